@@ -1,0 +1,85 @@
+// BodyOptions handling: resolving motion, validating every tunable, and copying them into Jolt BodyCreationSettings.
+import type { JoltModule } from './jolt-backend.ts';
+import { checkVec3 } from './shapes.ts';
+import type { BodyOptions, MotionKind, Vec3Like } from './types.ts';
+
+type J = JoltModule;
+
+/** Copies the tunables of `opts` into a BodyCreationSettings (restitution defaults to 0.2). */
+export function applyBodyOptions(J: J, settings: InstanceType<J['BodyCreationSettings']>, opts: BodyOptions, motion: MotionKind, isSensor: boolean): void {
+  settings.mRestitution = opts.restitution ?? 0.2;
+  if (opts.friction !== undefined) settings.mFriction = opts.friction;
+  if (opts.gravityFactor !== undefined) settings.mGravityFactor = opts.gravityFactor;
+  if (opts.linearDamping !== undefined) settings.mLinearDamping = opts.linearDamping;
+  if (opts.angularDamping !== undefined) settings.mAngularDamping = opts.angularDamping;
+  if (opts.allowSleeping === false) settings.mAllowSleeping = false;
+  settings.mMotionQuality = opts.motionQuality === 'linearCast' ? J.EMotionQuality_LinearCast : J.EMotionQuality_Discrete;
+  if (opts.massKg !== undefined && motion !== 'static') {
+    settings.mOverrideMassProperties = J.EOverrideMassProperties_CalculateInertia;
+    settings.mMassPropertiesOverride.mMass = opts.massKg;
+  }
+  if (isSensor) {
+    settings.mIsSensor = true;
+    settings.mCollideKinematicVsNonDynamic = true; // so kinematic / static overlappers register too
+  }
+  if (opts.linearVelocity) settings.mLinearVelocity.Set(opts.linearVelocity.x, opts.linearVelocity.y, opts.linearVelocity.z);
+  if (opts.angularVelocity) settings.mAngularVelocity.Set(opts.angularVelocity.x, opts.angularVelocity.y, opts.angularVelocity.z);
+}
+
+/** Validates an optional integer option within [min, max]. */
+export function intOption(value: number | undefined, fallback: number, min: number, max: number, name: string): number {
+  if (value === undefined) return fallback;
+  if (!Number.isInteger(value) || value < min || value > max) {
+    throw new Error(`PhysicsWorld.create: ${name} must be an integer in [${min}, ${max}], got ${String(value)}`);
+  }
+  return value;
+}
+
+/** The motion kind from `motion`, or the legacy `dynamic` flag. */
+export function resolveMotion(opts: BodyOptions): MotionKind {
+  if (opts.motion !== undefined) {
+    if (opts.motion !== 'static' && opts.motion !== 'dynamic' && opts.motion !== 'kinematic') {
+      throw new Error(`motion must be 'static', 'dynamic' or 'kinematic', got ${JSON.stringify(opts.motion)}`);
+    }
+    return opts.motion;
+  }
+  if (opts.dynamic === false) return 'static';
+  return 'dynamic';
+}
+
+/** Throws a clear Error for any out-of-range or non-finite tunable. */
+export function validateBodyOptions(opts: BodyOptions, what: string): void {
+  const num = (v: number | undefined, field: string, min: number, max = Infinity): void => {
+    if (v === undefined) return;
+    if (typeof v !== 'number' || !Number.isFinite(v) || v < min || v > max) {
+      throw new Error(`${what}: ${field} must be a finite number in [${min}, ${max}], got ${String(v)}`);
+    }
+  };
+  num(opts.restitution, 'restitution', 0, 1);
+  num(opts.friction, 'friction', 0);
+  num(opts.gravityFactor, 'gravityFactor', -100, 100);
+  num(opts.linearDamping, 'linearDamping', 0);
+  num(opts.angularDamping, 'angularDamping', 0);
+  if (opts.massKg !== undefined && (!Number.isFinite(opts.massKg) || opts.massKg <= 0)) {
+    throw new Error(`${what}: massKg must be a finite number > 0, got ${String(opts.massKg)}`);
+  }
+  if (opts.linearVelocity) checkVec3(opts.linearVelocity, what, 'linearVelocity');
+  if (opts.angularVelocity) checkVec3(opts.angularVelocity, what, 'angularVelocity');
+  if (opts.motionQuality !== undefined && opts.motionQuality !== 'discrete' && opts.motionQuality !== 'linearCast') {
+    throw new Error(`${what}: motionQuality must be 'discrete' or 'linearCast'`);
+  }
+}
+
+/** Accepts a flat x,y,z array or a list of points. */
+export function flattenPoints(points: ArrayLike<number> | Vec3Like[]): ArrayLike<number> {
+  if (Array.isArray(points) && points.length > 0 && typeof points[0] === 'object') {
+    const out = new Array<number>(points.length * 3);
+    (points as Vec3Like[]).forEach((p, i) => {
+      out[i * 3] = p?.x;
+      out[i * 3 + 1] = p?.y;
+      out[i * 3 + 2] = p?.z;
+    });
+    return out;
+  }
+  return points as ArrayLike<number>;
+}

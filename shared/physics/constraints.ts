@@ -1,0 +1,107 @@
+// Constraint helpers in world space: point (ball-and-socket), hinge, distance and slider links between two bodies.
+// Each builds its Jolt settings, hands them to PhysicsWorld.addConstraint (which consumes them) and frees its temporaries.
+import type { BodyHandle } from './body-handle.ts';
+import type { JoltModule } from './jolt-backend.ts';
+import type { PhysicsWorld } from './physics-world.ts';
+import { checkVec3 } from './shapes.ts';
+import type { Vec3Like } from './types.ts';
+
+type Constraint = InstanceType<JoltModule['Constraint']>;
+
+function normalized(v: Vec3Like, what: string, field: string): Vec3Like {
+  checkVec3(v, what, field);
+  const len = Math.sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+  if (len < 1e-9) throw new Error(`${what}: ${field} must be a non-zero vector`);
+  return { x: v.x / len, y: v.y / len, z: v.z / len };
+}
+
+/** Any unit vector perpendicular to `axis` (deterministic: arithmetic and sqrt only). */
+function perpendicular(axis: Vec3Like): Vec3Like {
+  const ref = Math.abs(axis.x) < 0.9 ? { x: 1, y: 0, z: 0 } : { x: 0, y: 1, z: 0 };
+  const c = { x: axis.y * ref.z - axis.z * ref.y, y: axis.z * ref.x - axis.x * ref.z, z: axis.x * ref.y - axis.y * ref.x };
+  const len = Math.sqrt(c.x * c.x + c.y * c.y + c.z * c.z);
+  return { x: c.x / len, y: c.y / len, z: c.z / len };
+}
+
+/** Pins `worldPivot` on body a to the same point on body b; rotation stays free (seed §25.11). */
+export function pointLink(world: PhysicsWorld, a: BodyHandle, b: BodyHandle, worldPivot: Vec3Like): Constraint {
+  checkVec3(worldPivot, 'pointLink', 'worldPivot');
+  const J = world.jolt;
+  const settings = new J.PointConstraintSettings(); // consumed by addConstraint
+  settings.mSpace = J.EConstraintSpace_WorldSpace;
+  settings.mPoint1.Set(worldPivot.x, worldPivot.y, worldPivot.z);
+  settings.mPoint2.Set(worldPivot.x, worldPivot.y, worldPivot.z);
+  return world.addConstraint(settings, a, b);
+}
+
+/** A hinge about `axis` through `worldPivot`, optionally limited to [minRadians, maxRadians]. */
+export function hingeLink(world: PhysicsWorld, a: BodyHandle, b: BodyHandle, worldPivot: Vec3Like, axis: Vec3Like, limits?: { minRadians: number; maxRadians: number }): Constraint {
+  checkVec3(worldPivot, 'hingeLink', 'worldPivot');
+  const h = normalized(axis, 'hingeLink', 'axis');
+  const n = perpendicular(h);
+  const J = world.jolt;
+  const settings = new J.HingeConstraintSettings(); // consumed by addConstraint
+  settings.mSpace = J.EConstraintSpace_WorldSpace;
+  settings.mPoint1.Set(worldPivot.x, worldPivot.y, worldPivot.z);
+  settings.mPoint2.Set(worldPivot.x, worldPivot.y, worldPivot.z);
+  settings.mHingeAxis1.Set(h.x, h.y, h.z);
+  settings.mHingeAxis2.Set(h.x, h.y, h.z);
+  settings.mNormalAxis1.Set(n.x, n.y, n.z);
+  settings.mNormalAxis2.Set(n.x, n.y, n.z);
+  if (limits) {
+    const { minRadians, maxRadians } = limits;
+    if (!(minRadians <= 0 && maxRadians >= 0 && minRadians >= -Math.PI && maxRadians <= Math.PI)) {
+      J.destroy(settings);
+      throw new Error(`hingeLink: limits must satisfy -π <= min <= 0 <= max <= π, got [${minRadians}, ${maxRadians}]`);
+    }
+    settings.mLimitsMin = minRadians;
+    settings.mLimitsMax = maxRadians;
+  }
+  return world.addConstraint(settings, a, b);
+}
+
+/** Keeps the distance between pointA (on a) and pointB (on b) within [minDistance, maxDistance] (default: current). */
+export function distanceLink(world: PhysicsWorld, a: BodyHandle, b: BodyHandle, pointA: Vec3Like, pointB: Vec3Like, range?: { minDistance: number; maxDistance: number }): Constraint {
+  checkVec3(pointA, 'distanceLink', 'pointA');
+  checkVec3(pointB, 'distanceLink', 'pointB');
+  const J = world.jolt;
+  const settings = new J.DistanceConstraintSettings(); // consumed by addConstraint
+  settings.mSpace = J.EConstraintSpace_WorldSpace;
+  settings.mPoint1.Set(pointA.x, pointA.y, pointA.z);
+  settings.mPoint2.Set(pointB.x, pointB.y, pointB.z);
+  if (range) {
+    if (!(range.minDistance >= 0 && range.maxDistance >= range.minDistance && Number.isFinite(range.maxDistance))) {
+      J.destroy(settings);
+      throw new Error(`distanceLink: need 0 <= minDistance <= maxDistance, got [${range.minDistance}, ${range.maxDistance}]`);
+    }
+    settings.mMinDistance = range.minDistance;
+    settings.mMaxDistance = range.maxDistance;
+  }
+  return world.addConstraint(settings, a, b);
+}
+
+/** Lets b slide relative to a along `axis` only, optionally limited to [minMetres, maxMetres]. */
+export function sliderLink(world: PhysicsWorld, a: BodyHandle, b: BodyHandle, worldPivot: Vec3Like, axis: Vec3Like, limits?: { minMetres: number; maxMetres: number }): Constraint {
+  checkVec3(worldPivot, 'sliderLink', 'worldPivot');
+  const s = normalized(axis, 'sliderLink', 'axis');
+  const n = perpendicular(s);
+  const J = world.jolt;
+  const settings = new J.SliderConstraintSettings(); // consumed by addConstraint
+  settings.mSpace = J.EConstraintSpace_WorldSpace;
+  settings.mAutoDetectPoint = false;
+  settings.mPoint1.Set(worldPivot.x, worldPivot.y, worldPivot.z);
+  settings.mPoint2.Set(worldPivot.x, worldPivot.y, worldPivot.z);
+  settings.mSliderAxis1.Set(s.x, s.y, s.z);
+  settings.mSliderAxis2.Set(s.x, s.y, s.z);
+  settings.mNormalAxis1.Set(n.x, n.y, n.z);
+  settings.mNormalAxis2.Set(n.x, n.y, n.z);
+  if (limits) {
+    if (!(limits.minMetres <= 0 && limits.maxMetres >= 0)) {
+      J.destroy(settings);
+      throw new Error(`sliderLink: limits must satisfy min <= 0 <= max, got [${limits.minMetres}, ${limits.maxMetres}]`);
+    }
+    settings.mLimitsMin = limits.minMetres;
+    settings.mLimitsMax = limits.maxMetres;
+  }
+  return world.addConstraint(settings, a, b);
+}

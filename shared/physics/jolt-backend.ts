@@ -1,0 +1,71 @@
+// Loads the single-threaded Jolt WASM module once (memoized) and hands out the module object.
+// This and the other files of shared/physics are the only code that names jolt-physics; it stays isomorphic.
+import type JoltFactory from 'jolt-physics/wasm';
+
+/** The loaded Jolt module: every Jolt class and enum hangs off it. */
+export type JoltModule = Awaited<ReturnType<typeof JoltFactory>>;
+
+/** How to find the `.wasm`: hand over its bytes (Node) or its URL (browser). */
+export interface PhysicsInitOptions {
+  /** The bytes of `jolt-physics/dist/jolt-physics.wasm.wasm`. */
+  wasmBinary?: ArrayBuffer | Uint8Array;
+  /** A URL the browser can fetch the `.wasm` from. */
+  wasmUrl?: string;
+}
+
+let loadPromise: Promise<JoltModule> | null = null;
+let loaded: JoltModule | null = null;
+let defaultOptions: PhysicsInitOptions | null = null;
+
+/**
+ * Registers how to load the module when a caller passes no options (the Node helper in server/ does this,
+ * so shared code never reads files). Has no effect once the module is loaded.
+ */
+export function setDefaultPhysicsInitOptions(opts: PhysicsInitOptions): void {
+  defaultOptions = opts;
+}
+
+/** Loads Jolt once; later calls (with any options) return the same module. */
+export function loadJolt(opts?: PhysicsInitOptions): Promise<JoltModule> {
+  if (!loadPromise) {
+    const chosen = opts && (opts.wasmBinary || opts.wasmUrl) ? opts : (defaultOptions ?? {});
+    loadPromise = (async () => {
+      const { default: factory } = await import('jolt-physics/wasm');
+      const moduleArgs: { locateFile?: (path: string) => string; wasmBinary?: ArrayBuffer | Uint8Array } = {};
+      if (chosen.wasmBinary) {
+        moduleArgs.wasmBinary = chosen.wasmBinary;
+      } else if (chosen.wasmUrl) {
+        const url = chosen.wasmUrl;
+        moduleArgs.locateFile = () => url;
+      } else {
+        throw new Error(
+          'loadJolt: no wasmBinary or wasmUrl given. In Node import server/physics-node.ts (it registers the ' +
+            "package's .wasm); in the browser pass { wasmUrl } pointing at jolt-physics.wasm.wasm.",
+        );
+      }
+      const module = (await factory(moduleArgs as never)) as JoltModule;
+      loaded = module;
+      return module;
+    })();
+    loadPromise.catch(() => {
+      loadPromise = null; // a failed load may be retried with other options
+    });
+  }
+  return loadPromise;
+}
+
+/** Awaits the module; call once at start-up (PhysicsWorld.create does it for you). */
+export async function initializePhysics(opts?: PhysicsInitOptions): Promise<void> {
+  await loadJolt(opts);
+}
+
+/** Whether the module has finished loading. */
+export function isPhysicsInitialized(): boolean {
+  return loaded !== null;
+}
+
+/** The loaded module, or an Error telling the caller to await initializePhysics first. */
+export function getJolt(): JoltModule {
+  if (!loaded) throw new Error('Jolt is not loaded yet: await initializePhysics() or PhysicsWorld.create() first');
+  return loaded;
+}

@@ -1,0 +1,567 @@
+// PhysicsWorld: one Jolt PhysicsSystem, its body registry with stable ids, the factories, stepping, sensors and
+// limits. Owns every Jolt object it creates; callers only ever see plain copies and BodyHandles.
+import { BodyFlag, BodyHandle, BODY_STATE_STRIDE, type BodyRole, type JoltBody } from './body-handle.ts';
+import { loadJolt, type JoltModule, type PhysicsInitOptions } from './jolt-backend.ts';
+import { assertGroupBits, CollisionLayer, createLayerFilters, packObjectLayer, type LayerFilters } from './layers.ts';
+import { applyBodyOptions, flattenPoints, intOption, resolveMotion, validateBodyOptions } from './body-options.ts';
+import { pointLink } from './constraints.ts';
+import { RayQueries, type RayHit } from './queries.ts';
+import { SensorHub, type SensorEvent } from './sensors.ts';
+import { buildShape, checkQuat, checkVec3, estimateShapeBytes, STATIC_ONLY_KINDS, type JoltShape, type ShapeSpec } from './shapes.ts';
+import { IDENTITY_QUAT, type BodyOptions, type MotionKind, type QuatLike, type Vec3Like } from './types.ts';
+
+/** Options of PhysicsWorld.create: how to load Jolt plus the world's fixed limits. */
+export interface PhysicsWorldOptions extends PhysicsInitOptions {
+  /** Most bodies the world holds (Jolt's mMaxBodies); adding more throws. Default 10240. */
+  maxBodies?: number;
+  /** Broad-phase pair buffer (mMaxBodyPairs). Default 16384. */
+  maxBodyPairs?: number;
+  /** Contact constraint buffer (mMaxContactConstraints). Default 8192 (the fixed 10 MB temp allocator caps it). */
+  maxContactConstraints?: number;
+  /** Free WASM heap kept in reserve for stepping; a creation that would eat into it throws. Default 8 MiB. */
+  minFreeHeapBytes?: number;
+  /** Gravity (m/s²); default (0, -9.81, 0). */
+  gravity?: Vec3Like;
+}
+
+/** The fixed tick the server runs: 60 Hz. */
+export const FIXED_DT_SECONDS = 1 / 60;
+const MAX_STEP_SECONDS = 1 / 30;
+const SUBSTEP_THRESHOLD_SECONDS = 1 / 55;
+/** Upper bound on maxContactConstraints: 16384 fits the 10 MB temp allocator for a 1000-box pile; 65536 aborts. */
+const MAX_CONTACT_CONSTRAINTS_LIMIT = 16384;
+const MAX_BODY_PAIRS_LIMIT = 65536;
+
+type J = JoltModule;
+type TrackedConstraint = { raw: InstanceType<J['Constraint']>; bodyA: number; bodyB: number };
+
+/** A Jolt world with stable body ids; create it with `await PhysicsWorld.create()`. */
+export class PhysicsWorld {
+  readonly jolt: J;
+  readonly system: InstanceType<J['PhysicsSystem']>;
+  readonly bodyInterface: InstanceType<J['BodyInterface']>;
+  readonly filters: LayerFilters;
+  readonly maxBodies: number;
+  readonly minFreeHeapBytes: number;
+  private readonly joltInterface: InstanceType<J['JoltInterface']>;
+  private readonly records = new Map<number, BodyHandle>();
+  private readonly byJoltId = new Map<number, BodyHandle>();
+  private readonly sensorJoltIds = new Set<number>();
+  private sortedIds: number[] = [];
+  private readonly constraints = new Set<TrackedConstraint>();
+  private readonly sensors: SensorHub;
+  private nextBodyId = 1;
+  private rays: RayQueries | null = null;
+  private destroyed = false;
+  private stateScratch = new Float32Array(0);
+  private idScratch = new Uint32Array(0);
+  private flagScratch = new Uint8Array(0);
+  /** @internal Per-world helpers (ray casts, characters) register cleanups here. */
+  readonly disposers = new Set<() => void>();
+
+  private constructor(J: J, opts: PhysicsWorldOptions) {
+    this.jolt = J;
+    this.maxBodies = intOption(opts.maxBodies, 10240, 1, 65536, 'maxBodies');
+    const maxBodyPairs = intOption(opts.maxBodyPairs, 16384, 64, MAX_BODY_PAIRS_LIMIT, 'maxBodyPairs');
+    const maxContacts = intOption(opts.maxContactConstraints, 8192, 64, MAX_CONTACT_CONSTRAINTS_LIMIT, 'maxContactConstraints');
+    this.minFreeHeapBytes = intOption(opts.minFreeHeapBytes, 8 * 1024 * 1024, 0, 64 * 1024 * 1024, 'minFreeHeapBytes');
+    const settings = new J.JoltSettings(); // freed once JoltInterface has copied it
+    settings.mMaxBodies = this.maxBodies;
+    settings.mMaxBodyPairs = maxBodyPairs;
+    settings.mMaxContactConstraints = maxContacts;
+    this.filters = createLayerFilters(J);
+    settings.mObjectLayerPairFilter = this.filters.objectLayerPairFilter; // JoltInterface takes ownership
+    settings.mBroadPhaseLayerInterface = this.filters.broadPhaseLayerInterface; // JoltInterface takes ownership
+    settings.mObjectVsBroadPhaseLayerFilter = this.filters.objectVsBroadPhaseLayerFilter; // JoltInterface takes ownership
+    this.joltInterface = new J.JoltInterface(settings); // owned by this world; destroyed in destroy()
+    J.destroy(settings);
+    this.system = this.joltInterface.GetPhysicsSystem();
+    this.bodyInterface = this.system.GetBodyInterface();
+    this.sensors = new SensorHub(J, this.system, {
+      stableIdOf: (joltId) => this.byJoltId.get(joltId)?.id,
+      isSensorJoltId: (joltId) => this.sensorJoltIds.has(joltId),
+    });
+    const g = opts.gravity ?? { x: 0, y: -9.81, z: 0 };
+    this.setGravity(g.x, g.y, g.z);
+  }
+
+  /** Loads Jolt (memoized) and builds a world. */
+  static async create(opts: PhysicsWorldOptions = {}): Promise<PhysicsWorld> {
+    const J = await loadJolt(opts);
+    return new PhysicsWorld(J, opts);
+  }
+
+  private live(): void {
+    if (this.destroyed) throw new Error('PhysicsWorld was destroyed');
+  }
+
+  /** Sets gravity (m/s²). */
+  setGravity(x: number, y: number, z: number): void {
+    this.live();
+    checkVec3({ x, y, z }, 'setGravity', 'gravity');
+    const g = new this.jolt.Vec3(x, y, z); // copied by SetGravity, freed at once
+    this.system.SetGravity(g);
+    this.jolt.destroy(g);
+  }
+
+  /** Variable step (seed §25.8): clamps to 1/30 s, two collision sub-steps above 1/55 s. */
+  step(dtSeconds: number): SensorEvent[] {
+    this.live();
+    if (!Number.isFinite(dtSeconds) || dtSeconds <= 0) throw new Error(`step: dtSeconds must be a finite number > 0, got ${dtSeconds}`);
+    const dt = Math.min(dtSeconds, MAX_STEP_SECONDS);
+    const steps = dt > SUBSTEP_THRESHOLD_SECONDS ? 2 : 1;
+    this.joltInterface.Step(dt, steps);
+    return this.deliverSensorEvents();
+  }
+
+  /** The server's fixed tick: exactly 1/60 s with one collision step. */
+  stepFixed(): SensorEvent[] {
+    this.live();
+    this.joltInterface.Step(FIXED_DT_SECONDS, 1);
+    return this.deliverSensorEvents();
+  }
+
+  private deliverSensorEvents(): SensorEvent[] {
+    const events = this.sensors.drain();
+    for (const e of events) {
+      const sensor = this.records.get(e.sensorId);
+      const other = this.records.get(e.otherId);
+      const cb = e.kind === 'enter' ? sensor?.sensor?.onEnter : sensor?.sensor?.onExit;
+      cb?.(other);
+    }
+    return events;
+  }
+
+  // ── factories ──────────────────────────────────────────────────────────────────────────────────────────────
+
+  /** A box with half extents `half` (m). */
+  addBox(half: Vec3Like, pos: Vec3Like, rot: QuatLike | null = null, opts: BodyOptions = {}): BodyHandle {
+    return this.addShape({ kind: 'box', halfExtents: { x: half.x, y: half.y, z: half.z } }, pos, rot, opts);
+  }
+
+  /** A sphere of `radius` (m). */
+  addSphere(radius: number, pos: Vec3Like, opts: BodyOptions = {}): BodyHandle {
+    return this.addShape({ kind: 'sphere', radius }, pos, null, opts);
+  }
+
+  /** A Y-axis capsule: cylinder half-length `halfHeight` plus hemispheres of `radius`. */
+  addCapsule(halfHeight: number, radius: number, pos: Vec3Like, rot: QuatLike | null = null, opts: BodyOptions = {}): BodyHandle {
+    return this.addShape({ kind: 'capsule', halfHeight, radius }, pos, rot, opts);
+  }
+
+  /** A Y-axis cylinder. */
+  addCylinder(halfHeight: number, radius: number, pos: Vec3Like, rot: QuatLike | null = null, opts: BodyOptions = {}): BodyHandle {
+    return this.addShape({ kind: 'cylinder', halfHeight, radius }, pos, rot, opts);
+  }
+
+  /** The convex hull of a point cloud (flat x,y,z array or a list of points). */
+  addConvexHull(points: ArrayLike<number> | Vec3Like[], pos: Vec3Like, rot: QuatLike | null = null, opts: BodyOptions = {}): BodyHandle {
+    return this.addShape({ kind: 'convexHull', points: flattenPoints(points) }, pos, rot, opts);
+  }
+
+  /** A triangle soup (static or kinematic only). */
+  addMeshCollider(positions: ArrayLike<number>, indices: ArrayLike<number>, pos: Vec3Like, rot: QuatLike | null = null, opts: BodyOptions = {}): BodyHandle {
+    return this.addShape({ kind: 'mesh', positions, indices }, pos, rot, { ...opts, motion: opts.motion ?? 'static' });
+  }
+
+  /** A sampleCount × sampleCount height grid; sample (x, z) sits at originXz + (x, z)·cellSize (static only). */
+  addHeightField(heights: ArrayLike<number>, sampleCount: number, cellSize: number, originXz: { x: number; z: number } = { x: 0, z: 0 }, opts: BodyOptions = {}): BodyHandle {
+    const spec: ShapeSpec = { kind: 'heightField', heights, sampleCount, cellSize, originXz };
+    return this.addShape(spec, { x: 0, y: 0, z: 0 }, null, { ...opts, motion: opts.motion ?? 'static' });
+  }
+
+  /** A compound of convex parts placed relative to the body. */
+  addCompound(parts: Extract<ShapeSpec, { kind: 'compound' }>['parts'], pos: Vec3Like, rot: QuatLike | null = null, opts: BodyOptions = {}): BodyHandle {
+    return this.addShape({ kind: 'compound', parts }, pos, rot, opts);
+  }
+
+  /** Builds any described shape into a body: the generic factory behind the named ones. */
+  addShape(spec: ShapeSpec, pos: Vec3Like, rot: QuatLike | null = null, opts: BodyOptions = {}): BodyHandle {
+    this.live();
+    const what = `${spec?.kind ?? 'shape'}${opts.name ? ` "${opts.name}"` : ''}`;
+    const motion = resolveMotion(opts);
+    if (spec && STATIC_ONLY_KINDS.has(spec.kind) && motion === 'dynamic') {
+      throw new Error(`${what}: a ${spec.kind} has no volume or inertia, so it can only be static or kinematic`);
+    }
+    if (spec?.kind === 'heightField' && motion !== 'static') throw new Error(`${what}: a height field can only be static`);
+    checkVec3(pos, what, 'position');
+    if (rot) checkQuat(rot, what, 'rotation');
+    const { layer, mask } = this.resolveLayerMask(opts, motion, what);
+    validateBodyOptions(opts, what);
+    this.ensureRoom(estimateShapeBytes(spec) + 2048, what);
+    const shape = buildShape(this.jolt, spec, what);
+    try {
+      return this.createBody(shape, spec, pos, rot ?? IDENTITY_QUAT, motion, layer, mask, opts, what);
+    } finally {
+      shape.Release(); // the body holds its own reference now (or the build failed and this frees the shape)
+    }
+  }
+
+  private resolveLayerMask(opts: BodyOptions, motion: MotionKind, what: string): { layer: number; mask: number } {
+    const sensor = opts.isSensor === true || opts.sensor !== undefined;
+    const layer = opts.layer ?? (sensor ? CollisionLayer.Trigger : motion === 'static' ? CollisionLayer.World : CollisionLayer.Prop);
+    const mask = opts.mask ?? CollisionLayer.All;
+    assertGroupBits(layer, `${what}: layer`);
+    assertGroupBits(mask, `${what}: mask`);
+    return { layer, mask };
+  }
+
+  /** Throws a clear Error when the world is full or the heap cannot take `bytes` more. */
+  ensureRoom(bytes: number, what: string): void {
+    if (this.records.size >= this.maxBodies) {
+      throw new Error(`${what}: the world is full (${this.maxBodies} bodies, the maxBodies limit of PhysicsWorld.create)`);
+    }
+    const free = this.freeHeapBytes();
+    if (free - bytes < this.minFreeHeapBytes) {
+      throw new Error(
+        `${what}: the WASM heap is nearly full (${(free / 1048576).toFixed(1)} MiB free, ~${(bytes / 1048576).toFixed(1)} MiB ` +
+          `needed, ${(this.minFreeHeapBytes / 1048576).toFixed(1)} MiB kept in reserve for stepping)`,
+      );
+    }
+  }
+
+  /** Free bytes in Jolt's fixed 128 MiB heap. */
+  freeHeapBytes(): number {
+    return this.jolt.JoltInterface.prototype.sGetFreeMemory();
+  }
+
+  private createBody(shape: JoltShape, spec: ShapeSpec, pos: Vec3Like, rot: QuatLike, motion: MotionKind, layer: number, mask: number, opts: BodyOptions, what: string): BodyHandle {
+    const J = this.jolt;
+    const rPos = new J.RVec3(pos.x, pos.y, pos.z); // copied into the settings, freed below
+    const qRot = new J.Quat(rot.x, rot.y, rot.z, rot.w); // copied into the settings, freed below
+    const motionType = motion === 'static' ? J.EMotionType_Static : motion === 'kinematic' ? J.EMotionType_Kinematic : J.EMotionType_Dynamic;
+    const objectLayer = packObjectLayer(J, layer, mask);
+    const settings = new J.BodyCreationSettings(shape, rPos, qRot, motionType, objectLayer); // freed below
+    J.destroy(rPos);
+    J.destroy(qRot);
+    const isSensor = opts.isSensor === true || opts.sensor !== undefined;
+    applyBodyOptions(J, settings, opts, motion, isSensor);
+    const body = this.bodyInterface.CreateBody(settings);
+    J.destroy(settings);
+    if (J.getPointer(body) === 0) {
+      throw new Error(`${what}: Jolt refused the body (the world holds ${this.records.size} of maxBodies ${this.maxBodies})`);
+    }
+    this.bodyInterface.AddBody(body.GetID(), motion === 'static' ? J.EActivation_DontActivate : J.EActivation_Activate);
+    const handle = this.track(body, { motion, layer, mask, isSensor, role: 'body', shape: spec, opts });
+    if (isSensor) this.sensors.ensureInstalled();
+    return handle;
+  }
+
+  /** @internal Registers a Jolt body (also character inner bodies) under the next stable id. */
+  track(body: JoltBody, info: { motion: MotionKind; layer: number; mask: number; isSensor: boolean; role: BodyRole; shape: ShapeSpec | undefined; opts: BodyOptions }, id = this.nextBodyId++): BodyHandle {
+    const joltId = body.GetID().GetIndexAndSequenceNumber();
+    const handle = new BodyHandle({
+      J: this.jolt,
+      id,
+      raw: body,
+      joltId,
+      motion: info.motion,
+      layer: info.layer,
+      mask: info.mask,
+      isSensor: info.isSensor,
+      role: info.role,
+      shape: info.shape,
+      name: info.opts.name,
+      userData: info.opts.userData,
+      sensor: info.opts.sensor,
+    });
+    this.records.set(id, handle);
+    this.byJoltId.set(joltId, handle);
+    if (info.isSensor) this.sensorJoltIds.add(joltId);
+    const ids = this.sortedIds;
+    if (ids.length === 0 || ids[ids.length - 1] < id) ids.push(id);
+    else ids.splice(lowerBound(ids, id), 0, id);
+    return handle;
+  }
+
+  /** @internal Forgets a body without touching Jolt (the character controller removes its own inner body). */
+  untrack(handle: BodyHandle): void {
+    this.sensors.forgetBody(handle.joltId);
+    this.records.delete(handle.id);
+    this.byJoltId.delete(handle.joltId);
+    this.sensorJoltIds.delete(handle.joltId);
+    const i = lowerBound(this.sortedIds, handle.id);
+    if (this.sortedIds[i] === handle.id) this.sortedIds.splice(i, 1);
+    handle.removed = true;
+  }
+
+  /** Removes and destroys a body (and any constraint attached to it). Its sensor overlaps close with exit events. */
+  removeBody(handleOrId: BodyHandle | number): void {
+    this.live();
+    const handle = typeof handleOrId === 'number' ? this.records.get(handleOrId) : handleOrId;
+    if (!handle || handle.removed || this.records.get(handle.id) !== handle) {
+      throw new Error(`removeBody: no body ${typeof handleOrId === 'number' ? handleOrId : handleOrId.id} in this world`);
+    }
+    if (handle.role === 'character') throw new Error(`removeBody: body ${handle.id} belongs to a CharacterController; destroy the controller`);
+    for (const c of [...this.constraints]) {
+      if (c.bodyA === handle.id || c.bodyB === handle.id) this.removeTrackedConstraint(c);
+    }
+    const id = handle.raw.GetID();
+    this.bodyInterface.RemoveBody(id);
+    this.bodyInterface.DestroyBody(id);
+    this.untrack(handle);
+  }
+
+  /** Removes every body and constraint (characters must be destroyed by their owners first). */
+  clear(): void {
+    this.live();
+    for (const c of [...this.constraints]) this.removeTrackedConstraint(c);
+    for (const id of [...this.sortedIds].reverse()) {
+      const h = this.records.get(id)!;
+      if (h.role !== 'character') this.removeBody(h);
+    }
+    this.sensors.drain();
+  }
+
+  /** Frees everything: bodies, constraints, helpers, the listener and the JoltInterface. */
+  destroy(): void {
+    if (this.destroyed) return;
+    for (const dispose of [...this.disposers]) dispose();
+    this.disposers.clear();
+    this.clear();
+    this.destroyed = true;
+    this.jolt.destroy(this.joltInterface);
+    this.sensors.dispose();
+    this.stateScratch = new Float32Array(0);
+  }
+
+  /** Whether destroy() has run. */
+  get isDestroyed(): boolean {
+    return this.destroyed;
+  }
+
+  /** Number of tracked bodies (including characters' inner bodies). */
+  get bodyCount(): number {
+    return this.records.size;
+  }
+
+  /** The handle for a stable id, or undefined. */
+  getBody(id: number): BodyHandle | undefined {
+    return this.records.get(id);
+  }
+
+  /** @internal The handle for a Jolt BodyID index+sequence number. */
+  bodyByJoltId(joltId: number): BodyHandle | undefined {
+    return this.byJoltId.get(joltId);
+  }
+
+  /** Stable ids of every tracked body, ascending (a copy). */
+  bodyIds(): number[] {
+    return this.sortedIds.slice();
+  }
+
+  /** The id the next body will get; with setNextBodyId, lets checkpoints restore id allocation. */
+  get nextId(): number {
+    return this.nextBodyId;
+  }
+
+  /** @internal Restores the id counter (checkpoint restore). */
+  setNextBodyId(next: number): void {
+    this.nextBodyId = next;
+  }
+
+  /** Stable ids of bodies currently overlapping a sensor, ascending. */
+  sensorOverlaps(sensor: BodyHandle | number): number[] {
+    return this.sensors.overlapping(typeof sensor === 'number' ? sensor : sensor.id);
+  }
+
+  /** @internal The sensor hub (checkpoints export/import its open overlaps). */
+  get sensorHub(): SensorHub {
+    return this.sensors;
+  }
+
+  // ── motion control ────────────────────────────────────────────────────────────────────────────────────────
+
+  private handleOf(b: BodyHandle | number, what: string): BodyHandle {
+    const h = typeof b === 'number' ? this.records.get(b) : b;
+    if (!h || h.removed) throw new Error(`${what}: no body ${typeof b === 'number' ? b : b.id} in this world`);
+    return h;
+  }
+
+  /** Sets a body's linear velocity (m/s) and wakes it. */
+  setLinearVelocity(b: BodyHandle | number, v: Vec3Like): void {
+    const h = this.handleOf(b, 'setLinearVelocity');
+    checkVec3(v, 'setLinearVelocity', 'velocity');
+    const jv = new this.jolt.Vec3(v.x, v.y, v.z); // copied, freed at once
+    this.bodyInterface.SetLinearVelocity(h.raw.GetID(), jv);
+    this.jolt.destroy(jv);
+  }
+
+  /** Sets a body's angular velocity (rad/s) and wakes it. */
+  setAngularVelocity(b: BodyHandle | number, v: Vec3Like): void {
+    const h = this.handleOf(b, 'setAngularVelocity');
+    checkVec3(v, 'setAngularVelocity', 'velocity');
+    const jv = new this.jolt.Vec3(v.x, v.y, v.z); // copied, freed at once
+    this.bodyInterface.SetAngularVelocity(h.raw.GetID(), jv);
+    this.jolt.destroy(jv);
+  }
+
+  /** Applies an impulse (N·s) at the centre of mass, or at a world point, and wakes the body. */
+  addImpulse(b: BodyHandle | number, impulse: Vec3Like, worldPoint?: Vec3Like): void {
+    const h = this.handleOf(b, 'addImpulse');
+    checkVec3(impulse, 'addImpulse', 'impulse');
+    const J = this.jolt;
+    const ji = new J.Vec3(impulse.x, impulse.y, impulse.z); // copied, freed below
+    if (worldPoint) {
+      checkVec3(worldPoint, 'addImpulse', 'worldPoint');
+      const p = new J.RVec3(worldPoint.x, worldPoint.y, worldPoint.z); // copied, freed below
+      this.bodyInterface.AddImpulse(h.raw.GetID(), ji, p);
+      J.destroy(p);
+    } else {
+      this.bodyInterface.AddImpulse(h.raw.GetID(), ji);
+    }
+    J.destroy(ji);
+  }
+
+  /** Moves a kinematic body so it reaches pos/rot after dtSeconds (velocity-based: pushes dynamics). */
+  moveKinematic(b: BodyHandle | number, pos: Vec3Like, rot: QuatLike | null, dtSeconds: number = FIXED_DT_SECONDS): void {
+    const h = this.handleOf(b, 'moveKinematic');
+    if (h.motion !== 'kinematic') throw new Error(`moveKinematic: body ${h.id} is ${h.motion}, not kinematic`);
+    checkVec3(pos, 'moveKinematic', 'position');
+    const r = rot ?? h.rotation();
+    checkQuat(r, 'moveKinematic', 'rotation');
+    if (!Number.isFinite(dtSeconds) || dtSeconds <= 0) throw new Error(`moveKinematic: dtSeconds must be > 0, got ${dtSeconds}`);
+    const J = this.jolt;
+    const p = new J.RVec3(pos.x, pos.y, pos.z); // copied, freed below
+    const q = new J.Quat(r.x, r.y, r.z, r.w); // copied, freed below
+    this.bodyInterface.MoveKinematic(h.raw.GetID(), p, q, dtSeconds);
+    J.destroy(p);
+    J.destroy(q);
+  }
+
+  /** Teleports a body (no velocity change); activates it unless static. */
+  setPosition(b: BodyHandle | number, pos: Vec3Like, rot: QuatLike | null = null): void {
+    const h = this.handleOf(b, 'setPosition');
+    checkVec3(pos, 'setPosition', 'position');
+    const r = rot ?? h.rotation();
+    checkQuat(r, 'setPosition', 'rotation');
+    const J = this.jolt;
+    const p = new J.RVec3(pos.x, pos.y, pos.z); // copied, freed below
+    const q = new J.Quat(r.x, r.y, r.z, r.w); // copied, freed below
+    this.bodyInterface.SetPositionAndRotation(h.raw.GetID(), p, q, h.motion === 'static' ? J.EActivation_DontActivate : J.EActivation_Activate);
+    J.destroy(p);
+    J.destroy(q);
+  }
+
+  // ── queries ───────────────────────────────────────────────────────────────────────────────────────────────
+
+  private queries(): RayQueries {
+    this.live();
+    if (!this.rays) {
+      const rays = new RayQueries(this);
+      this.rays = rays;
+      this.disposers.add(() => {
+        rays.dispose();
+        this.rays = null;
+      });
+    }
+    return this.rays;
+  }
+
+  /** Closest hit along origin + t·direction, t in [0, 1] (|direction| is the reach); null if none. */
+  rayCast(origin: Vec3Like, direction: Vec3Like, staticOnly = false): RayHit | null {
+    return this.queries().rayCast(origin, direction, staticOnly);
+  }
+
+  /** Height of the first surface below (x, y, z) within dist metres, or null; allocates nothing. */
+  rayDownY(x: number, y: number, z: number, dist: number, staticOnly = false): number | null {
+    return this.queries().rayDownY(x, y, z, dist, staticOnly);
+  }
+
+  /** Jolt's temp allocator (character updates need it). */
+  get tempAllocator(): InstanceType<J['TempAllocator']> {
+    return this.joltInterface.GetTempAllocator();
+  }
+
+  // ── bulk state ────────────────────────────────────────────────────────────────────────────────────────────
+
+  /**
+   * Reads every tracked body, in stable-id order, into reused typed arrays: `states` holds BODY_STATE_STRIDE
+   * floats per body (position, rotation, linear and angular velocity), `flags` BodyFlag bits. The arrays are
+   * overwritten by the next call: copy what you keep.
+   */
+  readBodyStates(): { count: number; ids: Uint32Array; states: Float32Array; flags: Uint8Array } {
+    this.live();
+    const n = this.sortedIds.length;
+    if (this.idScratch.length < n) {
+      const cap = Math.max(64, n * 2);
+      this.idScratch = new Uint32Array(cap);
+      this.stateScratch = new Float32Array(cap * BODY_STATE_STRIDE);
+      this.flagScratch = new Uint8Array(cap);
+    }
+    const ids = this.idScratch;
+    const states = this.stateScratch;
+    const flags = this.flagScratch;
+    for (let i = 0; i < n; i++) {
+      const h = this.records.get(this.sortedIds[i])!;
+      ids[i] = h.id;
+      h.readStateInto(states, i * BODY_STATE_STRIDE);
+      let f = h.motion === 'static' ? BodyFlag.Static : h.motion === 'kinematic' ? BodyFlag.Kinematic : BodyFlag.Dynamic;
+      if (h.motion !== 'static' && h.raw.IsActive()) f |= BodyFlag.Active;
+      if (h.isSensor) f |= BodyFlag.Sensor;
+      if (h.role === 'character') f |= BodyFlag.Character;
+      flags[i] = f;
+    }
+    return { count: n, ids: ids.subarray(0, n), states: states.subarray(0, n * BODY_STATE_STRIDE), flags: flags.subarray(0, n) };
+  }
+
+  // ── constraints ───────────────────────────────────────────────────────────────────────────────────────────
+
+  /** Creates a constraint from any TwoBodyConstraintSettings, consuming (destroying) the settings. */
+  addConstraint(settings: InstanceType<J['TwoBodyConstraintSettings']>, a: BodyHandle, b: BodyHandle): InstanceType<J['Constraint']> {
+    this.live();
+    const J = this.jolt;
+    if (a.removed || b.removed || this.records.get(a.id) !== a || this.records.get(b.id) !== b) {
+      J.destroy(settings);
+      throw new Error('addConstraint: both bodies must be live bodies of this world');
+    }
+    const constraint = settings.Create(a.raw, b.raw);
+    J.destroy(settings);
+    constraint.AddRef(); // our reference, so the handle outlives RemoveConstraint until we Release it
+    this.system.AddConstraint(constraint);
+    this.constraints.add({ raw: constraint, bodyA: a.id, bodyB: b.id });
+    return constraint;
+  }
+
+  /** Removes a constraint created by addConstraint. */
+  removeConstraint(constraint: InstanceType<J['Constraint']>): void {
+    for (const c of this.constraints) {
+      if (J_ptr(this.jolt, c.raw) === J_ptr(this.jolt, constraint)) {
+        this.removeTrackedConstraint(c);
+        return;
+      }
+    }
+    throw new Error('removeConstraint: not a constraint of this world');
+  }
+
+  private removeTrackedConstraint(c: TrackedConstraint): void {
+    this.system.RemoveConstraint(c.raw);
+    c.raw.Release();
+    this.constraints.delete(c);
+  }
+
+  /** Pins worldPivot on a to the same point on b (ball-and-socket). */
+  pointLink(a: BodyHandle, b: BodyHandle, worldPivot: Vec3Like): InstanceType<J['Constraint']> {
+    return pointLink(this, a, b, worldPivot);
+  }
+
+  /** Number of live constraints. */
+  get constraintCount(): number {
+    return this.constraints.size;
+  }
+}
+
+function J_ptr(J: J, obj: unknown): number {
+  return J.getPointer(obj);
+}
+
+function lowerBound(arr: number[], value: number): number {
+  let lo = 0;
+  let hi = arr.length;
+  while (lo < hi) {
+    const mid = (lo + hi) >>> 1;
+    if (arr[mid] < value) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo;
+}
