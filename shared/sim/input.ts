@@ -1,0 +1,99 @@
+// Player input commands: the quantized wire/log form, the one validator every input passes, and conversions.
+// Everything a player can influence enters the simulation through a validated InputCommand; nothing else reaches Jolt.
+
+/** Button bits of InputCommand.buttons. */
+export const Button = {
+  Jump: 1,
+  Fire: 2,
+  Sprint: 4,
+  Use: 8,
+} as const;
+
+/** All defined button bits. */
+export const BUTTON_MASK = Button.Jump | Button.Fire | Button.Sprint | Button.Use;
+
+/** Quantization steps: move axes in 1/127, yaw in 1/65536 turn, pitch in 1/32768 half-turn. */
+export const MOVE_STEPS = 127;
+export const YAW_STEPS = 65536;
+export const PITCH_STEPS = 16384; // ±16384 ↔ ±π/2
+
+/**
+ * One player's input for one tick, quantized to integers so the log, the wire and the simulation agree exactly.
+ * moveX/moveZ ∈ [-127, 127] (scaled to [-1, 1]), yaw ∈ [0, 65535] (a full turn), pitch ∈ [-16384, 16384] (±90°).
+ */
+export interface InputCommand {
+  moveX: number;
+  moveZ: number;
+  yaw: number;
+  pitch: number;
+  buttons: number;
+}
+
+/** The idle command: no movement, facing yaw 0, level. */
+export const NEUTRAL_INPUT: Readonly<InputCommand> = Object.freeze({ moveX: 0, moveZ: 0, yaw: 0, pitch: 0, buttons: 0 });
+
+/** The result of validating untrusted input: a clean command, or the reason it was rejected. */
+export type InputValidation = { ok: true; command: InputCommand; clamped: boolean } | { ok: false; error: string };
+
+function intIn(value: unknown, min: number, max: number, field: string): { v: number; clamped: boolean } | string {
+  if (typeof value !== 'number') return `${field} must be a number, got ${value === null ? 'null' : typeof value}`;
+  if (!Number.isFinite(value)) return `${field} must be finite, got ${String(value)}`;
+  const r = Math.round(value);
+  if (r < min) return { v: min, clamped: true };
+  if (r > max) return { v: max, clamped: true };
+  return { v: r, clamped: r !== value };
+}
+
+/**
+ * The one validator for untrusted input (network, log, bots). Wrong types, NaN and Infinity are rejected;
+ * out-of-range numbers are clamped (yaw wraps); unknown button bits are dropped. Never throws.
+ */
+export function validateInputCommand(raw: unknown): InputValidation {
+  if (raw === null || typeof raw !== 'object' || Array.isArray(raw)) return { ok: false, error: 'input must be an object' };
+  const r = raw as Record<string, unknown>;
+  const moveX = intIn(r.moveX, -MOVE_STEPS, MOVE_STEPS, 'moveX');
+  if (typeof moveX === 'string') return { ok: false, error: moveX };
+  const moveZ = intIn(r.moveZ, -MOVE_STEPS, MOVE_STEPS, 'moveZ');
+  if (typeof moveZ === 'string') return { ok: false, error: moveZ };
+  const pitch = intIn(r.pitch, -PITCH_STEPS, PITCH_STEPS, 'pitch');
+  if (typeof pitch === 'string') return { ok: false, error: pitch };
+  if (typeof r.yaw !== 'number' || !Number.isFinite(r.yaw)) return { ok: false, error: `yaw must be a finite number, got ${String(r.yaw)}` };
+  const yawRounded = Math.round(r.yaw);
+  const yaw = ((yawRounded % YAW_STEPS) + YAW_STEPS) % YAW_STEPS;
+  if (typeof r.buttons !== 'number' || !Number.isInteger(r.buttons) || r.buttons < 0) {
+    return { ok: false, error: `buttons must be a non-negative integer bit set, got ${String(r.buttons)}` };
+  }
+  const buttons = r.buttons & BUTTON_MASK;
+  const clamped = moveX.clamped || moveZ.clamped || pitch.clamped || yaw !== r.yaw || buttons !== r.buttons;
+  return { ok: true, command: { moveX: moveX.v, moveZ: moveZ.v, yaw, pitch: pitch.v, buttons }, clamped };
+}
+
+/** Quantizes float controls (move axes in [-1, 1], yaw/pitch in radians) into a command. */
+export function quantizeInput(moveX: number, moveZ: number, yawRadians: number, pitchRadians: number, buttons: number): InputCommand {
+  const clamp = (v: number, lo: number, hi: number): number => (v < lo ? lo : v > hi ? hi : v);
+  const fin = (v: number): number => (Number.isFinite(v) ? v : 0);
+  const turn = fin(yawRadians) / (2 * Math.PI);
+  const yaw = ((Math.round((turn - Math.floor(turn)) * YAW_STEPS) % YAW_STEPS) + YAW_STEPS) % YAW_STEPS;
+  return {
+    moveX: Math.round(clamp(fin(moveX), -1, 1) * MOVE_STEPS),
+    moveZ: Math.round(clamp(fin(moveZ), -1, 1) * MOVE_STEPS),
+    yaw,
+    pitch: Math.round(clamp(fin(pitchRadians) / (Math.PI / 2), -1, 1) * PITCH_STEPS),
+    buttons: (buttons >>> 0) & BUTTON_MASK,
+  };
+}
+
+/** Yaw of a command in radians, in [0, 2π). */
+export function yawRadians(cmd: InputCommand): number {
+  return (cmd.yaw / YAW_STEPS) * 2 * Math.PI;
+}
+
+/** Pitch of a command in radians, in [-π/2, π/2]. */
+export function pitchRadians(cmd: InputCommand): number {
+  return (cmd.pitch / PITCH_STEPS) * (Math.PI / 2);
+}
+
+/** Whether two commands are identical. */
+export function sameInput(a: InputCommand, b: InputCommand): boolean {
+  return a.moveX === b.moveX && a.moveZ === b.moveZ && a.yaw === b.yaw && a.pitch === b.pitch && a.buttons === b.buttons;
+}

@@ -1,0 +1,114 @@
+// The scenario contract: a declarative, seeded scene module (name, parameters, static scene, per-tick hook, spawn
+// points, render hints). Scenarios live in scenarios/; the Simulation builds and drives them through this interface.
+import type { BodyHandle, BodyOptions, PhysicsWorldOptions, QuatLike, ShapeSpec, Vec3Like } from '../physics/index.ts';
+import type { Prng } from './prng.ts';
+import type { CharacterState, PlayerCommand, SimEvent } from './types.ts';
+
+/** One numeric parameter with its default and limits. */
+export interface ParamSpec {
+  default: number;
+  min: number;
+  max: number;
+  integer?: boolean;
+  description: string;
+}
+
+/** Resolved parameter values (every declared parameter present). */
+export type ParamValues = Readonly<Record<string, number>>;
+
+/** An RGB colour, components in [0, 1]. */
+export type Rgb = readonly [number, number, number];
+
+/** Body options plus what the client needs to draw the body. */
+export interface SpawnOptions extends BodyOptions {
+  /** Render colour; scenarios pick one per body kind. */
+  color?: Rgb;
+  /** Hide from the renderer (e.g. trigger volumes drawn only as outlines by the client). */
+  hidden?: boolean;
+}
+
+/** How a scenario's players behave. */
+export interface PlayerRules {
+  /** Walk speed (m/s); sprint multiplies it by 1.8. Default 4. */
+  walkSpeedMetresPerSecond?: number;
+  /** Jump take-off speed (m/s). Default 5. */
+  jumpSpeedMetresPerSecond?: number;
+  /** Whether a player's bullets hit other players (never the shooter). Default false. */
+  bulletsHitPlayers?: boolean;
+  /** Ticks between two shots of one player. Default 10. */
+  fireCooldownTicks?: number;
+  /** Ticks a bullet lives. Default 120. */
+  bulletLifetimeTicks?: number;
+  /** Bullet muzzle speed (m/s). Default 40. */
+  bulletSpeedMetresPerSecond?: number;
+}
+
+/** What a scenario may use while building and on each tick. Every call is deterministic. */
+export interface ScenarioContext {
+  /** The world (advanced use: constraints, kinematic moves, queries). */
+  readonly world: import('../physics/index.ts').PhysicsWorld;
+  /** The simulation's seeded PRNG: the only randomness a scenario may use. */
+  readonly rng: Prng;
+  readonly params: ParamValues;
+  /** The tick being simulated (0 while building). */
+  readonly tick: number;
+  /** Adds a body (static scene while building, a spawn during ticks: reported as bodySpawned). */
+  spawn(shape: ShapeSpec, position: Vec3Like, rotation?: QuatLike | null, opts?: SpawnOptions): BodyHandle;
+  /** Removes a body the scenario spawned (reported as bodyRemoved). */
+  remove(bodyId: number): void;
+  /** Reports a scenario event (e.g. 'doorOpen', 1). */
+  emit(name: string, value: number): void;
+  /** Characters currently in the world, by player id. */
+  characters(): readonly CharacterState[];
+  /** The commands applied this tick, sorted by player id (e.g. a player-driven body reads them). */
+  inputs(): readonly PlayerCommand[];
+}
+
+/** The live side of a scenario, returned by build(). Keep body ids, not handles, across ticks. */
+export interface ScenarioInstance {
+  /** Feet position for the n-th player to join (n counts every join of the session). */
+  spawnPoint(playerIndex: number): Vec3Like;
+  /** Runs after the physics step of every tick (spawners, moving platforms, streaming). */
+  onTick?(ctx: ScenarioContext): void;
+  /** Sees the tick's sorted sensor events after onTick (doors, targets). */
+  onEvents?(ctx: ScenarioContext, events: readonly SimEvent[]): void;
+  /** Scenario-side state as plain JSON data, for checkpoints and the state hash. */
+  saveState?(): number[];
+  /** Restores what saveState returned. */
+  restoreState?(state: readonly number[]): void;
+}
+
+/** A scenario module's default export shape (exported by name as `scenario`). */
+export interface ScenarioDefinition {
+  name: string;
+  description: string;
+  params: Readonly<Record<string, ParamSpec>>;
+  /** Region every body stays in (snapshot quantization bounds); bodies leaving it are removed by the simulation. */
+  bounds: { min: Vec3Like; max: Vec3Like };
+  /** The scripted golden run: how many ticks, how many scripted bots. */
+  golden: { ticks: number; bots: number };
+  players?: PlayerRules;
+  /** World limits (maxBodies, …) this scene needs. */
+  world?: Omit<PhysicsWorldOptions, 'wasmBinary' | 'wasmUrl'>;
+  /** Builds the static scene and returns the live instance. */
+  build(ctx: ScenarioContext): ScenarioInstance;
+}
+
+/** Fills defaults and checks every parameter; unknown names and out-of-range values throw a clear Error. */
+export function resolveParams(def: ScenarioDefinition, given: Readonly<Record<string, number>> = {}): ParamValues {
+  const out: Record<string, number> = {};
+  for (const key of Object.keys(given)) {
+    if (!Object.prototype.hasOwnProperty.call(def.params, key)) {
+      const known = Object.keys(def.params).join(', ') || '(none)';
+      throw new Error(`scenario ${def.name}: unknown parameter "${key}" (known: ${known})`);
+    }
+  }
+  for (const [key, spec] of Object.entries(def.params)) {
+    const value = Object.prototype.hasOwnProperty.call(given, key) ? given[key] : spec.default;
+    if (typeof value !== 'number' || !Number.isFinite(value)) throw new Error(`scenario ${def.name}: parameter ${key} must be a finite number, got ${String(value)}`);
+    if (spec.integer && !Number.isInteger(value)) throw new Error(`scenario ${def.name}: parameter ${key} must be an integer, got ${value}`);
+    if (value < spec.min || value > spec.max) throw new Error(`scenario ${def.name}: parameter ${key} must be in [${spec.min}, ${spec.max}], got ${value}`);
+    out[key] = value;
+  }
+  return Object.freeze(out);
+}
