@@ -1,0 +1,104 @@
+// Time sources for the server: a monotonic clock with timers (system) and a manual one tests advance by hand.
+// Everything time-driven in server/ (tick loop, grace periods, rate limits, pings) reads time only through a Clock.
+
+/** Opaque handle of a scheduled timer. */
+export type TimerHandle = { readonly id: number };
+
+/** A monotonic millisecond clock that can also schedule callbacks. */
+export interface Clock {
+  /** Monotonic time in milliseconds (arbitrary origin; never goes back). */
+  nowMs(): number;
+  /** Runs `fn` once after `delayMs` (≥ 0). */
+  setTimer(delayMs: number, fn: () => void): TimerHandle;
+  /** Cancels a timer (no-op when it already ran or was cleared). */
+  clearTimer(handle: TimerHandle): void;
+}
+
+/** The real clock: `performance.now()` and Node timers (unref'd so they never keep a process alive on their own). */
+export class SystemClock implements Clock {
+  private nextId = 1;
+  private readonly timers = new Map<number, ReturnType<typeof setTimeout>>();
+
+  nowMs(): number {
+    return performance.now();
+  }
+
+  setTimer(delayMs: number, fn: () => void): TimerHandle {
+    const id = this.nextId++;
+    const t = setTimeout(
+      () => {
+        this.timers.delete(id);
+        fn();
+      },
+      Math.max(0, delayMs),
+    );
+    this.timers.set(id, t);
+    return { id };
+  }
+
+  clearTimer(handle: TimerHandle): void {
+    const t = this.timers.get(handle.id);
+    if (t !== undefined) {
+      clearTimeout(t);
+      this.timers.delete(handle.id);
+    }
+  }
+}
+
+interface ManualTimer {
+  id: number;
+  dueMs: number;
+  fn: () => void;
+}
+
+/**
+ * A clock that only moves when told to. `advance(ms)` fires due timers in time order (ties in scheduling order),
+ * with `nowMs()` reading each timer's due time while it runs, so code under test sees a consistent timeline.
+ */
+export class ManualClock implements Clock {
+  private now: number;
+  private nextId = 1;
+  private timers: ManualTimer[] = [];
+
+  constructor(startMs = 0) {
+    this.now = startMs;
+  }
+
+  nowMs(): number {
+    return this.now;
+  }
+
+  setTimer(delayMs: number, fn: () => void): TimerHandle {
+    if (!Number.isFinite(delayMs)) throw new Error(`ManualClock.setTimer: delayMs must be finite, got ${delayMs}`);
+    const id = this.nextId++;
+    this.timers.push({ id, dueMs: this.now + Math.max(0, delayMs), fn });
+    return { id };
+  }
+
+  clearTimer(handle: TimerHandle): void {
+    this.timers = this.timers.filter((t) => t.id !== handle.id);
+  }
+
+  /** Number of timers still pending. */
+  pendingTimers(): number {
+    return this.timers.length;
+  }
+
+  /** Moves time forward by `ms`, running every timer that falls due on the way (including ones they schedule). */
+  advance(ms: number): void {
+    if (!Number.isFinite(ms) || ms < 0) throw new Error(`ManualClock.advance: ms must be a finite number ≥ 0, got ${ms}`);
+    const end = this.now + ms;
+    for (;;) {
+      let next: ManualTimer | null = null;
+      for (const t of this.timers) {
+        if (t.dueMs <= end && (next === null || t.dueMs < next.dueMs || (t.dueMs === next.dueMs && t.id < next.id))) next = t;
+      }
+      if (next === null) break;
+      const fired = next;
+      this.timers = this.timers.filter((t) => t !== fired);
+      if (fired.dueMs > this.now) this.now = fired.dueMs;
+      fired.fn();
+    }
+    this.now = end;
+  }
+}

@@ -1,0 +1,92 @@
+// One player's pending inputs keyed by the tick they are for: accepts validated commands within a bounded window
+// ahead of the server tick, hands out exactly one command per tick (repeating the last one when none arrived).
+import { NEUTRAL_INPUT, type InputCommand } from '../shared/sim/input.ts';
+
+/** What happened to one offered input. */
+export const OfferResult = {
+  /** Stored for its tick. */
+  Accepted: 'accepted',
+  /** A command for that tick was already stored (redundant copy): ignored. */
+  Duplicate: 'duplicate',
+  /** Its tick was already applied: dropped. */
+  Late: 'late',
+  /** Its tick is further ahead than the window allows: dropped. */
+  TooFar: 'tooFar',
+} as const;
+export type OfferResult = (typeof OfferResult)[keyof typeof OfferResult];
+
+/** Running counts of one buffer. */
+export interface InputBufferStats {
+  accepted: number;
+  duplicates: number;
+  late: number;
+  tooFar: number;
+  /** Ticks applied with a repeated command because none had arrived. */
+  repeated: number;
+}
+
+/** A per-player input buffer; `take(tick)` must be called with consecutive ticks. */
+export class InputBuffer {
+  /** Furthest ahead of the next tick to apply an input may be stamped. */
+  readonly maxLeadTicks: number;
+  private readonly pending = new Map<number, InputCommand>();
+  private last: InputCommand = NEUTRAL_INPUT;
+  private nextTick: number;
+  readonly stats: InputBufferStats = { accepted: 0, duplicates: 0, late: 0, tooFar: 0, repeated: 0 };
+
+  /** `firstTick` is the first tick this player's commands will be applied on. */
+  constructor(firstTick: number, maxLeadTicks = 120) {
+    if (!Number.isInteger(firstTick) || firstTick < 0) throw new Error(`InputBuffer: firstTick must be an integer ≥ 0, got ${firstTick}`);
+    if (!Number.isInteger(maxLeadTicks) || maxLeadTicks < 1) throw new Error(`InputBuffer: maxLeadTicks must be an integer ≥ 1, got ${maxLeadTicks}`);
+    this.nextTick = firstTick;
+    this.maxLeadTicks = maxLeadTicks;
+  }
+
+  /** The next tick take() will serve. */
+  get nextTickToApply(): number {
+    return this.nextTick;
+  }
+
+  /** How many commands are waiting. */
+  get size(): number {
+    return this.pending.size;
+  }
+
+  /** The command applied most recently (neutral before the first). */
+  get lastApplied(): InputCommand {
+    return this.last;
+  }
+
+  /** Offers an already-validated command for `tick`. The first copy for a tick wins; the buffer never grows past the window. */
+  offer(tick: number, command: InputCommand): OfferResult {
+    if (tick < this.nextTick) {
+      this.stats.late++;
+      return OfferResult.Late;
+    }
+    if (tick > this.nextTick + this.maxLeadTicks) {
+      this.stats.tooFar++;
+      return OfferResult.TooFar;
+    }
+    if (this.pending.has(tick)) {
+      this.stats.duplicates++;
+      return OfferResult.Duplicate;
+    }
+    this.pending.set(tick, command);
+    this.stats.accepted++;
+    return OfferResult.Accepted;
+  }
+
+  /** The command to apply on `tick` (which must be the next tick): the one stamped for it, else the last one again. */
+  take(tick: number): { command: InputCommand; repeated: boolean } {
+    if (tick !== this.nextTick) throw new Error(`InputBuffer.take: expected tick ${this.nextTick}, got ${tick}`);
+    this.nextTick = tick + 1;
+    const cmd = this.pending.get(tick);
+    if (cmd !== undefined) {
+      this.pending.delete(tick);
+      this.last = cmd;
+      return { command: cmd, repeated: false };
+    }
+    this.stats.repeated++;
+    return { command: this.last, repeated: true };
+  }
+}

@@ -1,0 +1,43 @@
+// Structured logging for the server: a pino logger (JSON lines) with a level, silent in tests, and a flush that
+// resolves once buffered lines are written (used by shutdown).
+import { pino, type Logger } from 'pino';
+
+export type { Logger } from 'pino';
+
+/** Options of createLogger. */
+export interface LoggerOptions {
+  /** pino level name; 'silent' disables output. Default: TAOS_LOG_LEVEL, else 'silent' under vitest, else 'info'. */
+  level?: string;
+  /** Where lines go: a file descriptor (default 1, stdout). */
+  fd?: number;
+}
+
+/** The default level: quiet under vitest unless TAOS_LOG_LEVEL says otherwise. */
+export function defaultLogLevel(): string {
+  const env = process.env.TAOS_LOG_LEVEL;
+  if (env) return env;
+  return process.env.VITEST ? 'silent' : 'info';
+}
+
+/** Creates the server's logger. */
+export function createLogger(opts: LoggerOptions = {}): Logger {
+  const level = opts.level ?? defaultLogLevel();
+  const destination = pino.destination({ dest: opts.fd ?? 1, sync: false });
+  return pino({ level, base: { service: 'taos-physics' } }, destination);
+}
+
+/** A logger that drops everything. */
+export function silentLogger(): Logger {
+  return pino({ level: 'silent' });
+}
+
+/** Resolves once the logger's buffered lines have been written (never rejects). */
+export function flushLogger(logger: Logger): Promise<void> {
+  return new Promise((resolve) => {
+    try {
+      logger.flush(() => resolve());
+    } catch {
+      resolve();
+    }
+  });
+}

@@ -1,0 +1,83 @@
+// The server's Prometheus metrics: one prom-client Registry per server instance (so several servers in one process,
+// as in tests, never share counters), the metric objects rooms and sessions update, and the text for GET /metrics.
+import { Counter, Gauge, Histogram, Registry, collectDefaultMetrics } from 'prom-client';
+
+const TICK_BUCKETS_SECONDS = [0.0005, 0.001, 0.002, 0.004, 0.008, 0.0125, 0.01667, 0.025, 0.05, 0.1, 0.25];
+const SNAPSHOT_BYTE_BUCKETS = [64, 256, 1024, 4096, 16384, 65536, 262144];
+
+/** Every metric the server exports. */
+export interface ServerMetrics {
+  readonly registry: Registry;
+  /** Whole tick: inputs, physics, snapshots, sends. */
+  readonly tickDuration: Histogram<string>;
+  /** Simulation.step alone. */
+  readonly physicsStep: Histogram<string>;
+  readonly ticks: Counter<string>;
+  /** Ticks that took longer than one tick period. */
+  readonly tickOverruns: Counter<string>;
+  /** Slowdowns: ticks given up because the server could not catch up. */
+  readonly ticksSkipped: Counter<string>;
+  readonly rooms: Gauge<string>;
+  readonly clients: Gauge<string>;
+  readonly players: Gauge<string>;
+  /** Inputs stamped for a tick already applied. */
+  readonly inputsLate: Counter<string>;
+  /** Inputs dropped for another reason (reason label: too_far). */
+  readonly inputsDropped: Counter<string>;
+  /** Ticks on which a player's last input was repeated because none had arrived. */
+  readonly inputsRepeated: Counter<string>;
+  readonly inputsAccepted: Counter<string>;
+  readonly snapshotBytes: Histogram<string>;
+  /** Snapshots by kind (full, delta). */
+  readonly snapshotsSent: Counter<string>;
+  /** Snapshots not sent because the client's socket buffer was backed up. */
+  readonly snapshotsSkipped: Counter<string>;
+  readonly bytesSent: Counter<string>;
+  readonly bytesReceived: Counter<string>;
+  readonly messagesReceived: Counter<string>;
+  /** Messages rejected by validation (reason label). */
+  readonly badMessages: Counter<string>;
+  /** Clients disconnected by the server (reason label). */
+  readonly disconnects: Counter<string>;
+  readonly connections: Counter<string>;
+}
+
+/** Creates a fresh registry with all metrics (plus Node process metrics when `processMetrics`). */
+export function createMetrics(opts: { processMetrics?: boolean; prefix?: string } = {}): ServerMetrics {
+  const registry = new Registry();
+  const p = opts.prefix ?? 'taos_';
+  const registers = [registry];
+  if (opts.processMetrics ?? true) collectDefaultMetrics({ register: registry, prefix: p });
+  const counter = (name: string, help: string, labelNames: string[] = []): Counter<string> =>
+    new Counter({ name: p + name, help, labelNames, registers });
+  const gauge = (name: string, help: string): Gauge<string> => new Gauge({ name: p + name, help, registers });
+  return {
+    registry,
+    tickDuration: new Histogram({ name: `${p}tick_duration_seconds`, help: 'Wall time of one room tick (inputs, physics, snapshots, sends)', buckets: TICK_BUCKETS_SECONDS, registers }),
+    physicsStep: new Histogram({ name: `${p}physics_step_seconds`, help: 'Wall time of Simulation.step in one room tick', buckets: TICK_BUCKETS_SECONDS, registers }),
+    ticks: counter('ticks_total', 'Room ticks simulated'),
+    tickOverruns: counter('tick_overruns_total', 'Room ticks that took longer than the tick period'),
+    ticksSkipped: counter('ticks_skipped_total', 'Ticks given up (slowdown) because a room could not catch up'),
+    rooms: gauge('rooms', 'Open rooms'),
+    clients: gauge('clients', 'Connected WebSocket clients'),
+    players: gauge('players', 'Players in rooms'),
+    inputsLate: counter('inputs_late_total', 'Inputs stamped for a tick that was already applied (dropped)'),
+    inputsDropped: counter('inputs_dropped_total', 'Inputs dropped for a reason other than being late', ['reason']),
+    inputsRepeated: counter('inputs_repeated_total', "Player ticks that repeated the last input because none had arrived"),
+    inputsAccepted: counter('inputs_accepted_total', 'Inputs stored for a future tick'),
+    snapshotBytes: new Histogram({ name: `${p}snapshot_bytes`, help: 'Encoded size of one snapshot message', buckets: SNAPSHOT_BYTE_BUCKETS, registers }),
+    snapshotsSent: counter('snapshots_sent_total', 'Snapshots sent', ['kind']),
+    snapshotsSkipped: counter('snapshots_skipped_total', "Snapshots skipped because the client's socket buffer was backed up"),
+    bytesSent: counter('bytes_sent_total', 'Bytes sent to clients (all messages)'),
+    bytesReceived: counter('bytes_received_total', 'Bytes received from clients'),
+    messagesReceived: counter('messages_received_total', 'Messages received from clients'),
+    badMessages: counter('bad_messages_total', 'Messages rejected by validation', ['reason']),
+    disconnects: counter('disconnects_total', 'Clients disconnected by the server', ['reason']),
+    connections: counter('connections_total', 'WebSocket connections accepted'),
+  };
+}
+
+/** The Prometheus text exposition of a registry, with its content type. */
+export async function renderMetrics(metrics: ServerMetrics): Promise<{ body: string; contentType: string }> {
+  return { body: await metrics.registry.metrics(), contentType: metrics.registry.contentType };
+}

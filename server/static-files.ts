@@ -1,0 +1,102 @@
+// Serves the built browser client (a directory of static files) over HTTP GET/HEAD, refusing paths that escape it,
+// and answers with a clear text page when the client has not been built yet.
+import { createReadStream, type Stats } from 'node:fs';
+import { stat } from 'node:fs/promises';
+import type { IncomingMessage, ServerResponse } from 'node:http';
+import { extname, resolve, sep } from 'node:path';
+
+const CONTENT_TYPES: Readonly<Record<string, string>> = {
+  '.html': 'text/html; charset=utf-8',
+  '.js': 'text/javascript; charset=utf-8',
+  '.mjs': 'text/javascript; charset=utf-8',
+  '.css': 'text/css; charset=utf-8',
+  '.json': 'application/json; charset=utf-8',
+  '.map': 'application/json; charset=utf-8',
+  '.wasm': 'application/wasm',
+  '.wgsl': 'text/plain; charset=utf-8',
+  '.txt': 'text/plain; charset=utf-8',
+  '.svg': 'image/svg+xml',
+  '.png': 'image/png',
+  '.ico': 'image/x-icon',
+};
+
+/** The page served at / when the client directory has no index.html. */
+export function notBuiltPage(rootDir: string): string {
+  return [
+    'taos-physics server is running, but the browser client has not been built.',
+    '',
+    `Expected its files in: ${rootDir}`,
+    'Build it with:  npm run build   (then reload this page)',
+    '',
+    'The server API is up meanwhile: /healthz, /metrics, /api/rooms, and WebSocket on this same port.',
+    '',
+  ].join('\n');
+}
+
+async function fileStats(path: string): Promise<Stats | null> {
+  try {
+    return await stat(path);
+  } catch {
+    return null;
+  }
+}
+
+/** A request handler for static files under `rootDir`; resolves true when it answered the request. */
+export function createStaticHandler(rootDir: string): (req: IncomingMessage, res: ServerResponse) => Promise<boolean> {
+  const root = resolve(rootDir);
+  return async (req, res) => {
+    if (req.method !== 'GET' && req.method !== 'HEAD') return false;
+    let pathname: string;
+    try {
+      pathname = decodeURIComponent(new URL(req.url ?? '/', 'http://localhost').pathname);
+    } catch {
+      res.writeHead(400, { 'content-type': 'text/plain; charset=utf-8' }).end('bad request path\n');
+      return true;
+    }
+    if (pathname.includes('\0')) {
+      res.writeHead(400, { 'content-type': 'text/plain; charset=utf-8' }).end('bad request path\n');
+      return true;
+    }
+    const relative = pathname.endsWith('/') ? `${pathname}index.html` : pathname;
+    const full = resolve(root, `.${relative}`);
+    if (full !== root && !full.startsWith(root + sep)) {
+      res.writeHead(403, { 'content-type': 'text/plain; charset=utf-8' }).end('forbidden\n');
+      return true;
+    }
+    let info = await fileStats(full);
+    let path = full;
+    if (info?.isDirectory()) {
+      path = resolve(full, 'index.html');
+      info = await fileStats(path);
+    }
+    if (!info || !info.isFile()) {
+      if (pathname === '/' || pathname === '/index.html') {
+        res.writeHead(503, { 'content-type': 'text/plain; charset=utf-8', 'cache-control': 'no-store' });
+        res.end(req.method === 'HEAD' ? undefined : notBuiltPage(root));
+        return true;
+      }
+      res.writeHead(404, { 'content-type': 'text/plain; charset=utf-8' }).end(`not found: ${pathname}\n`);
+      return true;
+    }
+    res.writeHead(200, {
+      'content-type': CONTENT_TYPES[extname(path).toLowerCase()] ?? 'application/octet-stream',
+      'content-length': info.size,
+      'cache-control': 'no-cache',
+      'x-content-type-options': 'nosniff',
+    });
+    if (req.method === 'HEAD') {
+      res.end();
+      return true;
+    }
+    await new Promise<void>((done) => {
+      const stream = createReadStream(path);
+      stream.on('error', () => {
+        res.destroy();
+        done();
+      });
+      stream.on('end', () => done());
+      stream.pipe(res);
+    });
+    return true;
+  };
+}

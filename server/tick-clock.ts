@@ -1,0 +1,155 @@
+// The fixed-rate tick driver: tick k is due at start + k × dt on a monotonic Clock (absolute targets, so no drift),
+// runs late ticks back to back up to a catch-up limit, then gives up the lost time (slows down) and reports it.
+import type { Clock, TimerHandle } from './clock.ts';
+
+/** What the driver reports when it had to give up time instead of catching up. */
+export interface SlowdownReport {
+  /** The next tick to run when the slowdown happened. */
+  tick: number;
+  /** Ticks that were due but not run (the simulation falls behind wall time by this many ticks). */
+  skippedTicks: number;
+  /** Milliseconds given up. */
+  lostMs: number;
+}
+
+/** Options of TickClock. */
+export interface TickClockOptions {
+  clock: Clock;
+  /** Ticks per second; default 60. */
+  tickRateHz?: number;
+  /** Most ticks run back to back in one wake-up before giving up time; default 4. */
+  maxCatchUpTicks?: number;
+  /** Runs one tick (its index counts from 0 at start()). An exception stops the clock and goes to onError. */
+  onTick: (tick: number) => void;
+  /** Called after a slowdown. */
+  onSlowdown?: (report: SlowdownReport) => void;
+  /** Called when onTick throws; the clock is stopped first. */
+  onError?: (error: unknown) => void;
+}
+
+// Float slack when comparing a due time to "now" (a manual clock lands exactly on due times modulo rounding).
+const EPSILON_MS = 1e-6;
+
+/** Drives onTick at a fixed rate; start() with a timer-driven loop, or call poll() yourself. */
+export class TickClock {
+  readonly tickRateHz: number;
+  readonly dtMs: number;
+  readonly maxCatchUpTicks: number;
+  private readonly clock: Clock;
+  private readonly onTick: (tick: number) => void;
+  private readonly onSlowdown: ((r: SlowdownReport) => void) | undefined;
+  private readonly onError: ((e: unknown) => void) | undefined;
+  private originMs = 0;
+  private ticks = 0;
+  private running = false;
+  private timer: TimerHandle | null = null;
+  private slowdownCount = 0;
+  private skippedTotal = 0;
+
+  constructor(opts: TickClockOptions) {
+    const rate = opts.tickRateHz ?? 60;
+    if (!Number.isFinite(rate) || rate <= 0 || rate > 1000) throw new Error(`TickClock: tickRateHz must be in (0, 1000], got ${rate}`);
+    const catchUp = opts.maxCatchUpTicks ?? 4;
+    if (!Number.isInteger(catchUp) || catchUp < 1 || catchUp > 100) throw new Error(`TickClock: maxCatchUpTicks must be an integer in [1, 100], got ${catchUp}`);
+    this.tickRateHz = rate;
+    this.dtMs = 1000 / rate;
+    this.maxCatchUpTicks = catchUp;
+    this.clock = opts.clock;
+    this.onTick = opts.onTick;
+    this.onSlowdown = opts.onSlowdown;
+    this.onError = opts.onError;
+  }
+
+  /** Ticks run so far (the index the next tick will get). */
+  get ticksRun(): number {
+    return this.ticks;
+  }
+
+  /** How many slowdowns happened. */
+  get slowdowns(): number {
+    return this.slowdownCount;
+  }
+
+  /** Ticks given up in all slowdowns. */
+  get skippedTicks(): number {
+    return this.skippedTotal;
+  }
+
+  /** Whether the timer loop is running. */
+  get isRunning(): boolean {
+    return this.running;
+  }
+
+  /** Monotonic time at which the next tick is due. */
+  nextDueMs(): number {
+    return this.dueAt(this.ticks);
+  }
+
+  /** Milliseconds the next tick is overdue (0 when on time). */
+  lagMs(): number {
+    return Math.max(0, this.clock.nowMs() - this.dueAt(this.ticks));
+  }
+
+  /** Starts the timer loop; tick 0 is due immediately. */
+  start(): void {
+    if (this.running) return;
+    this.running = true;
+    this.originMs = this.clock.nowMs() - this.ticks * this.dtMs;
+    this.schedule();
+  }
+
+  /** Stops the timer loop (the tick count is kept; start() resumes without catching up on the pause). */
+  stop(): void {
+    this.running = false;
+    if (this.timer) this.clock.clearTimer(this.timer);
+    this.timer = null;
+  }
+
+  /**
+   * Runs every tick due now, at most maxCatchUpTicks; if more were due, gives up the rest (the next tick becomes
+   * due one dt from now) and reports a slowdown. Returns how many ticks ran.
+   */
+  poll(): number {
+    const now = this.clock.nowMs();
+    let due = 0;
+    while (due <= this.maxCatchUpTicks && this.dueAt(this.ticks + due) <= now + EPSILON_MS) due++;
+    const run = Math.min(due, this.maxCatchUpTicks);
+    for (let i = 0; i < run; i++) {
+      const tick = this.ticks;
+      this.ticks++;
+      this.onTick(tick);
+    }
+    if (due > this.maxCatchUpTicks) {
+      // More were due than we may catch up: count every overdue tick, then re-anchor so the next is due in one dt.
+      const behindMs = now - this.dueAt(this.ticks);
+      const skipped = Math.floor(behindMs / this.dtMs + EPSILON_MS) + 1;
+      this.originMs = now + this.dtMs - this.ticks * this.dtMs;
+      this.slowdownCount++;
+      this.skippedTotal += skipped;
+      this.onSlowdown?.({ tick: this.ticks, skippedTicks: skipped, lostMs: skipped * this.dtMs });
+    }
+    return run;
+  }
+
+  private dueAt(tick: number): number {
+    return this.originMs + (tick * 1000) / this.tickRateHz;
+  }
+
+  private schedule(): void {
+    if (!this.running) return;
+    const delay = Math.max(0, this.dueAt(this.ticks) - this.clock.nowMs());
+    this.timer = this.clock.setTimer(delay, () => {
+      this.timer = null;
+      if (!this.running) return;
+      try {
+        this.poll();
+      } catch (error) {
+        this.stop();
+        if (this.onError) this.onError(error);
+        else throw error;
+        return;
+      }
+      this.schedule();
+    });
+  }
+}

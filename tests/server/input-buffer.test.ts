@@ -1,0 +1,57 @@
+// Tests for server/input-buffer.ts: per-tick storage, repeat-last, late/too-far drops, redundancy.
+import { describe, expect, it } from 'vitest';
+import { InputBuffer, OfferResult } from '../../server/input-buffer.ts';
+import { NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input.ts';
+
+const cmd = (moveX: number): InputCommand => ({ moveX, moveZ: 0, yaw: 0, pitch: 0, buttons: 0 });
+
+describe('InputBuffer', () => {
+  it('applies the command stamped for each tick', () => {
+    const buf = new InputBuffer(10);
+    expect(buf.offer(11, cmd(2))).toBe(OfferResult.Accepted);
+    expect(buf.offer(10, cmd(1))).toBe(OfferResult.Accepted);
+    expect(buf.take(10)).toEqual({ command: cmd(1), repeated: false });
+    expect(buf.take(11)).toEqual({ command: cmd(2), repeated: false });
+    expect(buf.size).toBe(0);
+  });
+
+  it('repeats the last applied command when none arrived, neutral before the first', () => {
+    const buf = new InputBuffer(0);
+    expect(buf.take(0)).toEqual({ command: NEUTRAL_INPUT, repeated: true });
+    buf.offer(1, cmd(5));
+    buf.take(1);
+    expect(buf.take(2)).toEqual({ command: cmd(5), repeated: true });
+    expect(buf.stats.repeated).toBe(2);
+  });
+
+  it('drops inputs for ticks already applied and counts them', () => {
+    const buf = new InputBuffer(0);
+    buf.take(0);
+    buf.take(1);
+    expect(buf.offer(1, cmd(9))).toBe(OfferResult.Late);
+    expect(buf.stats.late).toBe(1);
+    expect(buf.take(2).command).toEqual(NEUTRAL_INPUT);
+  });
+
+  it('keeps the first copy of a redundant input', () => {
+    const buf = new InputBuffer(0);
+    buf.offer(3, cmd(1));
+    expect(buf.offer(3, cmd(2))).toBe(OfferResult.Duplicate);
+    buf.take(0);
+    buf.take(1);
+    buf.take(2);
+    expect(buf.take(3).command).toEqual(cmd(1));
+  });
+
+  it('stays bounded: inputs beyond the lead window are dropped', () => {
+    const buf = new InputBuffer(0, 8);
+    for (let t = 0; t < 1000; t++) buf.offer(t, cmd(1));
+    expect(buf.size).toBe(9);
+    expect(buf.stats.tooFar).toBe(991);
+  });
+
+  it('refuses to skip ticks', () => {
+    const buf = new InputBuffer(5);
+    expect(() => buf.take(6)).toThrow(/expected tick 5/);
+  });
+});
