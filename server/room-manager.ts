@@ -1,0 +1,221 @@
+// The process's rooms: the default room, rooms created on demand from a scenario, lookup by id, the rooms limit,
+// and closing a room once it has been empty for a grace period (never the default room).
+import type { Clock, TimerHandle } from './clock.ts';
+import type { Logger } from './logger.ts';
+import type { ServerMetrics } from './metrics.ts';
+import { Room, RoomError, type RoomInfo, type RoomRecorder, type RoomSimulation } from './room.ts';
+
+/** The id of the room that always exists. */
+export const DEFAULT_ROOM_ID = 'default';
+/** Room ids: letters, digits, '-' and '_' (1–64). */
+const ROOM_ID_RE = /^[A-Za-z0-9_-]{1,64}$/;
+
+/** A simulation built for a room, with the limit the room enforces on joins. */
+export interface RoomSimulationBuild {
+  sim: RoomSimulation;
+  /** Most bodies the world holds. */
+  maxBodies: number;
+  /** The parameters after defaults were filled in. */
+  params: Readonly<Record<string, number>>;
+}
+
+/** Builds simulations and recorders for rooms (the server wires Simulation.create and the log writer in here). */
+export interface RoomFactory {
+  /** Throws an Error with a clear message for an unknown scenario or bad parameters. */
+  createSimulation(scenario: string, params: Readonly<Record<string, number>>, seed: number | string): Promise<RoomSimulationBuild>;
+  /** A recorder for the room, or null when not recording. */
+  createRecorder?(room: { id: string; scenario: string; params: Readonly<Record<string, number>>; seed: number | string; startTick: number }): Promise<RoomRecorder | null>;
+  /** Whether `scenario` names a known scenario. */
+  hasScenario(scenario: string): boolean;
+}
+
+/** Options of RoomManager. */
+export interface RoomManagerOptions {
+  clock: Clock;
+  metrics: ServerMetrics;
+  logger: Logger;
+  factory: RoomFactory;
+  defaultScenario: string;
+  defaultParams?: Readonly<Record<string, number>>;
+  /** Seed of every room's simulation. Default 1. */
+  seed?: number | string;
+  snapshotRateHz: number;
+  maxClientsPerRoom: number;
+  /** Most rooms open at once (each has its own Jolt world in the shared 128 MB heap). Default 6. */
+  maxRooms?: number;
+  /** How long a non-default room may stay empty before it closes. Default 30 s. */
+  emptyRoomGraceMs?: number;
+  /** Passed to each room. */
+  maxCatchUpTicks?: number;
+  maxInputLeadTicks?: number;
+  pauseWhenEmpty?: boolean;
+}
+
+/** Where a client wants to go: an existing room by id, a new room from a scenario, or the default room. */
+export interface RoomRequest {
+  roomId?: string;
+  scenario?: string;
+  params?: Readonly<Record<string, number>>;
+}
+
+/** Owns every room of the process. */
+export class RoomManager {
+  private readonly opts: RoomManagerOptions;
+  private readonly rooms = new Map<string, Room>();
+  private readonly creating = new Map<string, Promise<Room>>();
+  private readonly emptyTimers = new Map<string, TimerHandle>();
+  private nextRoomNumber = 1;
+  private closing = false;
+
+  constructor(opts: RoomManagerOptions) {
+    this.opts = opts;
+  }
+
+  /** Creates the default room. */
+  async start(): Promise<Room> {
+    return this.create(DEFAULT_ROOM_ID, this.opts.defaultScenario, this.opts.defaultParams ?? {});
+  }
+
+  /** The room with this id, if open. */
+  get(id: string): Room | undefined {
+    return this.rooms.get(id);
+  }
+
+  /** Every open room, default first, then by id. */
+  all(): Room[] {
+    return [...this.rooms.values()].sort((a, b) => (a.id === DEFAULT_ROOM_ID ? -1 : b.id === DEFAULT_ROOM_ID ? 1 : a.id < b.id ? -1 : a.id > b.id ? 1 : 0));
+  }
+
+  /** Summaries of every open room. */
+  list(): RoomInfo[] {
+    return this.all().map((r) => r.info());
+  }
+
+  /** Total members over all rooms. */
+  clientCount(): number {
+    let n = 0;
+    for (const r of this.rooms.values()) n += r.clientCount;
+    return n;
+  }
+
+  /**
+   * Resolves a request to a room: an existing id; a new room under that id when a scenario is given too; a new
+   * room with a fresh id from a scenario alone; otherwise the default room. Throws RoomError when it cannot.
+   */
+  async resolve(req: RoomRequest): Promise<Room> {
+    if (this.closing) throw new RoomError('server-shutdown', 'the server is shutting down');
+    if (req.roomId !== undefined) {
+      if (!ROOM_ID_RE.test(req.roomId)) throw new RoomError('bad-message', `room id must match ${ROOM_ID_RE}, got ${JSON.stringify(req.roomId)}`);
+      const existing = this.rooms.get(req.roomId);
+      if (existing) {
+        if (req.scenario !== undefined && req.scenario !== existing.scenarioName) {
+          throw new RoomError('bad-message', `room ${req.roomId} runs scenario ${existing.scenarioName}, not ${req.scenario}`);
+        }
+        return existing;
+      }
+      const pending = this.creating.get(req.roomId);
+      if (pending) return pending;
+      if (req.scenario === undefined) throw new RoomError('room-not-found', `no room "${req.roomId}" (give a scenario to create it)`);
+      return this.create(req.roomId, req.scenario, req.params ?? {});
+    }
+    if (req.scenario !== undefined) {
+      let id: string;
+      do id = `${req.scenario}-${this.nextRoomNumber++}`.slice(0, 64);
+      while (this.rooms.has(id) || this.creating.has(id));
+      return this.create(id, req.scenario, req.params ?? {});
+    }
+    const def = this.rooms.get(DEFAULT_ROOM_ID);
+    if (!def) throw new RoomError('room-not-found', 'the default room is not open');
+    return def;
+  }
+
+  /** Creates a room (shared by concurrent requests for the same id). Throws RoomError for limits and bad scenarios. */
+  create(id: string, scenario: string, params: Readonly<Record<string, number>>): Promise<Room> {
+    if (this.closing) return Promise.reject(new RoomError('server-shutdown', 'the server is shutting down'));
+    const existing = this.rooms.get(id);
+    if (existing) return Promise.resolve(existing);
+    const pending = this.creating.get(id);
+    if (pending) return pending;
+    const maxRooms = this.opts.maxRooms ?? 6;
+    if (this.rooms.size + this.creating.size >= maxRooms) {
+      return Promise.reject(new RoomError('server-full', `the server already runs its limit of ${maxRooms} rooms`));
+    }
+    if (!this.opts.factory.hasScenario(scenario)) return Promise.reject(new RoomError('bad-message', `unknown scenario "${scenario}"`));
+    const promise = this.build(id, scenario, params).finally(() => this.creating.delete(id));
+    this.creating.set(id, promise);
+    return promise;
+  }
+
+  private async build(id: string, scenario: string, params: Readonly<Record<string, number>>): Promise<Room> {
+    const seed = this.opts.seed ?? 1;
+    let built: RoomSimulationBuild;
+    try {
+      built = await this.opts.factory.createSimulation(scenario, params, seed);
+    } catch (error) {
+      throw new RoomError('bad-message', `cannot create room ${id}: ${error instanceof Error ? error.message : String(error)}`);
+    }
+    let recorder: RoomRecorder | null = null;
+    try {
+      recorder = (await this.opts.factory.createRecorder?.({ id, scenario, params: built.params, seed, startTick: built.sim.tick })) ?? null;
+    } catch (error) {
+      built.sim.destroy();
+      throw new RoomError('internal', `cannot start the recording of room ${id}: ${error instanceof Error ? error.message : String(error)}`);
+    }
+    const room = new Room(built.sim, {
+      id,
+      scenarioName: scenario,
+      params: built.params,
+      seed,
+      clock: this.opts.clock,
+      metrics: this.opts.metrics,
+      logger: this.opts.logger,
+      snapshotRateHz: this.opts.snapshotRateHz,
+      maxClients: this.opts.maxClientsPerRoom,
+      maxBodies: built.maxBodies,
+      maxCatchUpTicks: this.opts.maxCatchUpTicks,
+      maxInputLeadTicks: this.opts.maxInputLeadTicks,
+      pauseWhenEmpty: this.opts.pauseWhenEmpty,
+      recorder,
+    });
+    this.rooms.set(id, room);
+    this.opts.metrics.rooms.set(this.rooms.size);
+    room.onClose(() => {
+      this.rooms.delete(id);
+      this.clearEmptyTimer(id);
+      this.opts.metrics.rooms.set(this.rooms.size);
+    });
+    if (id !== DEFAULT_ROOM_ID) {
+      room.onEmptyChange((empty) => (empty ? this.armEmptyTimer(room) : this.clearEmptyTimer(id)));
+      this.armEmptyTimer(room);
+    }
+    room.start();
+    this.opts.logger.info({ room: id, scenario, params: built.params, recording: recorder !== null }, 'room opened');
+    return room;
+  }
+
+  private armEmptyTimer(room: Room): void {
+    this.clearEmptyTimer(room.id);
+    const graceMs = this.opts.emptyRoomGraceMs ?? 30_000;
+    this.emptyTimers.set(
+      room.id,
+      this.opts.clock.setTimer(graceMs, () => {
+        this.emptyTimers.delete(room.id);
+        if (room.clientCount === 0) void room.close('room empty');
+      }),
+    );
+  }
+
+  private clearEmptyTimer(id: string): void {
+    const t = this.emptyTimers.get(id);
+    if (t) this.opts.clock.clearTimer(t);
+    this.emptyTimers.delete(id);
+  }
+
+  /** Closes every room (members are told `reason`) and refuses new ones. */
+  async closeAll(reason: string): Promise<void> {
+    this.closing = true;
+    await Promise.allSettled([...this.creating.values()]);
+    for (const id of [...this.emptyTimers.keys()]) this.clearEmptyTimer(id);
+    await Promise.all([...this.rooms.values()].map((r) => r.close(reason)));
+  }
+}

@@ -1,0 +1,363 @@
+// One room: a Simulation stepped by its own TickClock, its players and their input buffers, the exact per-tick input
+// record (stepped, recorded), and delivery of each tick's events and world frames to its members. Protocol-agnostic.
+import { BODY_STATE_STRIDE } from '../shared/physics/index.ts';
+import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '../shared/sim/types.ts';
+import type { InputCommand } from '../shared/sim/input.ts';
+import type { Clock } from './clock.ts';
+import { InputBuffer, OfferResult } from './input-buffer.ts';
+import type { Logger } from './logger.ts';
+import type { ServerMetrics } from './metrics.ts';
+import { TickClock } from './tick-clock.ts';
+
+/** The bulk body read the room hands to snapshot encoders (the world's readBodyStates() shape). */
+export interface BodyStates {
+  count: number;
+  ids: Uint32Array;
+  states: Float32Array;
+  flags: Uint8Array;
+}
+
+/** The part of Simulation a room drives (shared/sim/simulation.ts satisfies it). */
+export interface RoomSimulation {
+  readonly tick: number;
+  step(record: TickInputRecord): SimEvent[];
+  stateHash(): string;
+  characters(): CharacterState[];
+  readBodyStates(): BodyStates;
+  staticDescriptors(): BodyDescriptor[];
+  bodyDescriptor(id: number): BodyDescriptor | undefined | null;
+  destroy(): void;
+}
+
+/** Where a room's input records go (the --record writer); append is called before each step. */
+export interface RoomRecorder {
+  append(record: TickInputRecord): void;
+  /** Flushes and closes; the room has stopped ticking. */
+  close(): Promise<void>;
+}
+
+/** The world after one snapshot tick, shared by every member's encoder (copies: valid after the tick). */
+export interface WorldFrame {
+  /** The tick just simulated (events of that tick carry the same number). */
+  tick: number;
+  bodies: BodyStates;
+  characters: readonly CharacterState[];
+  /** Scratch space for encoders: the first one stores work (e.g. quantized bodies) every other member reuses. */
+  readonly cache: Map<string, unknown>;
+}
+
+/** What a room needs from each connected member (the client session implements it). */
+export interface RoomMember {
+  /** The tick's events (sorted, stamped), delivered reliably; called only for ticks that have events. */
+  deliverEvents(tick: number, events: readonly SimEvent[]): void;
+  /** A world frame at the member's snapshot rate. */
+  deliverFrame(frame: WorldFrame): void;
+  /** The room has closed; the member is no longer in it. */
+  roomClosed(reason: string): void;
+}
+
+/** A refusal with a stable code the session forwards to the client. */
+export class RoomError extends Error {
+  readonly code: string;
+  constructor(code: string, message: string) {
+    super(message);
+    this.name = 'RoomError';
+    this.code = code;
+  }
+}
+
+/** Room settings. */
+export interface RoomOptions {
+  id: string;
+  scenarioName: string;
+  params: Readonly<Record<string, number>>;
+  seed: number | string;
+  clock: Clock;
+  metrics: ServerMetrics;
+  logger: Logger;
+  /** Snapshots per second (≤ tick rate); a frame goes out on ticks where the running count crosses a whole number. */
+  snapshotRateHz: number;
+  /** Most members; joins beyond it are refused. */
+  maxClients: number;
+  /** Most bodies the world may hold; a join that would need more is refused. */
+  maxBodies: number;
+  /** Most ticks ahead of the server an input may be stamped. Default 120 (2 s). */
+  maxInputLeadTicks?: number;
+  /** Most ticks run back to back to catch up before slowing down. Default 4. */
+  maxCatchUpTicks?: number;
+  /** Stop ticking while nobody is in the room. Default true. */
+  pauseWhenEmpty?: boolean;
+  recorder?: RoomRecorder | null;
+}
+
+/** What a successful join gives the member. */
+export interface JoinResult {
+  playerId: number;
+  /** The tick whose record carries the join. */
+  joinTick: number;
+  /** The first tick the player's inputs are applied on. */
+  firstInputTick: number;
+}
+
+/** A room's public summary (GET /api/rooms). */
+export interface RoomInfo {
+  id: string;
+  scenario: string;
+  clients: number;
+  tick: number;
+  bodies: number;
+  params: Readonly<Record<string, number>>;
+}
+
+interface Player {
+  playerId: number;
+  name: string;
+  member: RoomMember;
+  inputs: InputBuffer;
+  /** True once the join has gone into a record. */
+  inWorld: boolean;
+}
+
+const TICK_RATE_HZ = 60;
+
+/** A running room; build it with `new Room(sim, opts)` and call start(). */
+export class Room {
+  readonly id: string;
+  readonly scenarioName: string;
+  readonly params: Readonly<Record<string, number>>;
+  readonly seed: number | string;
+  readonly sim: RoomSimulation;
+  readonly tickClock: TickClock;
+  private readonly opts: RoomOptions;
+  private readonly players = new Map<number, Player>();
+  private pendingLeaves: number[] = [];
+  private nextPlayerId = 1;
+  private closedReason: string | null = null;
+  private snapshotAccumulator = 0;
+  private lastBodyCount = 0;
+  private readonly tickListeners = new Set<(record: TickInputRecord, events: readonly SimEvent[]) => void>();
+  private readonly emptyListeners = new Set<(empty: boolean) => void>();
+  private readonly closeListeners = new Set<(reason: string) => void>();
+
+  constructor(sim: RoomSimulation, opts: RoomOptions) {
+    if (!(opts.snapshotRateHz > 0 && opts.snapshotRateHz <= TICK_RATE_HZ)) {
+      throw new Error(`room ${opts.id}: snapshot rate must be in (0, ${TICK_RATE_HZ}] Hz, got ${opts.snapshotRateHz}`);
+    }
+    this.sim = sim;
+    this.opts = opts;
+    this.id = opts.id;
+    this.scenarioName = opts.scenarioName;
+    this.params = opts.params;
+    this.seed = opts.seed;
+    this.lastBodyCount = sim.readBodyStates().count;
+    this.tickClock = new TickClock({
+      clock: opts.clock,
+      tickRateHz: TICK_RATE_HZ,
+      maxCatchUpTicks: opts.maxCatchUpTicks ?? 4,
+      onTick: () => this.tickOnce(),
+      onSlowdown: (r) => {
+        opts.metrics.ticksSkipped.inc(r.skippedTicks);
+        opts.logger.warn({ room: this.id, tick: r.tick, skippedTicks: r.skippedTicks, lostMs: Math.round(r.lostMs) }, 'room cannot keep up: slowing down');
+      },
+      onError: (error) => this.fail(error),
+    });
+  }
+
+  /** Members (connected players). */
+  get clientCount(): number {
+    return this.players.size;
+  }
+
+  /** Whether the room has closed. */
+  get closed(): boolean {
+    return this.closedReason !== null;
+  }
+
+  /** Starts ticking (unless empty and pausing when empty). */
+  start(): void {
+    if (this.closed) return;
+    if (this.players.size > 0 || !(this.opts.pauseWhenEmpty ?? true)) this.tickClock.start();
+  }
+
+  /** The room's summary. */
+  info(): RoomInfo {
+    return { id: this.id, scenario: this.scenarioName, clients: this.players.size, tick: this.sim.tick, bodies: this.lastBodyCount, params: this.params };
+  }
+
+  /** Adds a member as a new player; its join goes into the next tick's record. Throws RoomError when refused. */
+  join(member: RoomMember, name: string): JoinResult {
+    if (this.closed) throw new RoomError('room_closed', `room ${this.id} is closed`);
+    if (this.players.size >= this.opts.maxClients) {
+      throw new RoomError('room_full', `room ${this.id} is full (${this.opts.maxClients} clients)`);
+    }
+    const charactersPending = [...this.players.values()].filter((p) => !p.inWorld).length;
+    if (this.lastBodyCount + charactersPending + 1 > this.opts.maxBodies) {
+      throw new RoomError('room_body_limit', `room ${this.id} is at its body limit (${this.opts.maxBodies} bodies): no room for another character`);
+    }
+    const playerId = this.nextPlayerId++;
+    const joinTick = this.sim.tick;
+    const firstInputTick = joinTick + 1;
+    this.players.set(playerId, {
+      playerId,
+      name,
+      member,
+      inputs: new InputBuffer(firstInputTick, this.opts.maxInputLeadTicks ?? 120),
+      inWorld: false,
+    });
+    this.opts.metrics.players.inc();
+    if (this.players.size === 1) {
+      this.emptyListeners.forEach((fn) => fn(false));
+      this.tickClock.start();
+    }
+    return { playerId, joinTick, firstInputTick };
+  }
+
+  /** Removes a player; the leave goes into the next tick's record (a join not yet applied is simply dropped). */
+  leave(playerId: number): void {
+    const p = this.players.get(playerId);
+    if (!p) return;
+    this.players.delete(playerId);
+    this.opts.metrics.players.dec();
+    if (p.inWorld) this.pendingLeaves.push(playerId);
+    if (this.players.size === 0) this.emptyListeners.forEach((fn) => fn(true));
+  }
+
+  /** Offers a validated command a player stamped for `tick`. Unknown players are ignored (their leave raced it). */
+  offerInput(playerId: number, tick: number, command: InputCommand): OfferResult | null {
+    const p = this.players.get(playerId);
+    if (!p) return null;
+    const result = p.inputs.offer(tick, command);
+    const m = this.opts.metrics;
+    if (result === OfferResult.Accepted) m.inputsAccepted.inc();
+    else if (result === OfferResult.Late) m.inputsLate.inc();
+    else if (result === OfferResult.TooFar) m.inputsDropped.inc({ reason: 'too_far' });
+    return result;
+  }
+
+  /** The static geometry and descriptors a client needs to draw the scene. */
+  staticDescriptors(): BodyDescriptor[] {
+    return this.sim.staticDescriptors();
+  }
+
+  /** Calls `fn` after every tick with the exact record stepped and the tick's events. Returns an unsubscribe. */
+  onTick(fn: (record: TickInputRecord, events: readonly SimEvent[]) => void): () => void {
+    this.tickListeners.add(fn);
+    return () => this.tickListeners.delete(fn);
+  }
+
+  /** Calls `fn(true)` when the last member leaves and `fn(false)` when the first arrives. */
+  onEmptyChange(fn: (empty: boolean) => void): () => void {
+    this.emptyListeners.add(fn);
+    return () => this.emptyListeners.delete(fn);
+  }
+
+  /** Calls `fn` once when the room closes. */
+  onClose(fn: (reason: string) => void): () => void {
+    this.closeListeners.add(fn);
+    return () => this.closeListeners.delete(fn);
+  }
+
+  /** Builds this tick's record from pending leaves/joins and the players' buffers, steps, and delivers the results. */
+  tickOnce(): void {
+    if (this.closed) return;
+    const started = performance.now();
+    const tick = this.sim.tick;
+    const leaves = this.pendingLeaves.sort((a, b) => a - b);
+    this.pendingLeaves = [];
+    const joins: TickInputRecord['joins'] = [];
+    const commands: TickInputRecord['commands'] = [];
+    const m = this.opts.metrics;
+    for (const p of [...this.players.values()].sort((a, b) => a.playerId - b.playerId)) {
+      if (!p.inWorld) {
+        joins.push({ playerId: p.playerId, name: p.name });
+        continue;
+      }
+      const taken = p.inputs.take(tick);
+      if (taken.repeated) m.inputsRepeated.inc();
+      commands.push({ playerId: p.playerId, input: taken.command });
+    }
+    const record: TickInputRecord = { tick, leaves, joins, commands };
+    this.opts.recorder?.append(record);
+    const stepStarted = performance.now();
+    const events = this.sim.step(record);
+    m.physicsStep.observe((performance.now() - stepStarted) / 1000);
+    for (const j of joins) {
+      const p = this.players.get(j.playerId);
+      if (p) p.inWorld = true;
+    }
+    m.ticks.inc();
+    if (this.players.size === 0 && (this.opts.pauseWhenEmpty ?? true) && this.pendingLeaves.length === 0) this.tickClock.stop();
+    this.deliver(tick, events);
+    for (const fn of this.tickListeners) fn(record, events);
+    const seconds = (performance.now() - started) / 1000;
+    m.tickDuration.observe(seconds);
+    if (seconds > 1 / TICK_RATE_HZ) m.tickOverruns.inc();
+  }
+
+  private deliver(tick: number, events: readonly SimEvent[]): void {
+    const members = [...this.players.values()];
+    if (events.length > 0) for (const p of members) this.safely(p, () => p.member.deliverEvents(tick, events));
+    this.snapshotAccumulator += this.opts.snapshotRateHz;
+    if (this.snapshotAccumulator + 1e-9 < TICK_RATE_HZ) {
+      return;
+    }
+    this.snapshotAccumulator -= TICK_RATE_HZ;
+    const bodies = this.sim.readBodyStates();
+    this.lastBodyCount = bodies.count;
+    if (members.length === 0) return;
+    const frame: WorldFrame = {
+      tick,
+      bodies: {
+        count: bodies.count,
+        ids: bodies.ids.slice(0, bodies.count),
+        states: bodies.states.slice(0, bodies.count * BODY_STATE_STRIDE),
+        flags: bodies.flags.slice(0, bodies.count),
+      },
+      characters: this.sim.characters(),
+      cache: new Map(),
+    };
+    for (const p of members) this.safely(p, () => p.member.deliverFrame(frame));
+  }
+
+  // A member that throws while taking a delivery is removed; the room and the other members carry on.
+  private safely(p: Player, fn: () => void): void {
+    try {
+      fn();
+    } catch (error) {
+      this.opts.logger.error({ room: this.id, playerId: p.playerId, err: error }, 'delivery to a member failed; removing it');
+      this.leave(p.playerId);
+    }
+  }
+
+  private fail(error: unknown): void {
+    const message = error instanceof Error ? error.message : String(error);
+    this.opts.logger.error({ room: this.id, tick: this.sim.tick, err: error }, 'room tick failed; closing the room');
+    void this.close(`room error: ${message}`);
+  }
+
+  /** Stops ticking, tells every member why, closes the recorder and frees the simulation. Idempotent. */
+  async close(reason: string): Promise<void> {
+    if (this.closedReason !== null) return;
+    this.closedReason = reason;
+    this.tickClock.stop();
+    const members = [...this.players.values()];
+    this.opts.metrics.players.dec(members.length);
+    this.players.clear();
+    for (const p of members) {
+      try {
+        p.member.roomClosed(reason);
+      } catch (error) {
+        this.opts.logger.warn({ room: this.id, err: error }, 'member failed to take the close notice');
+      }
+    }
+    try {
+      await this.opts.recorder?.close();
+    } catch (error) {
+      this.opts.logger.error({ room: this.id, err: error }, 'closing the room recording failed');
+    }
+    const tick = this.sim.tick;
+    this.sim.destroy();
+    this.opts.logger.info({ room: this.id, reason, tick }, 'room closed');
+    for (const fn of this.closeListeners) fn(reason);
+  }
+}
