@@ -1,0 +1,279 @@
+// Payload codecs of the input-log record types: header, tick (a TickInputRecord, compact binary), hash,
+// checkpoint, end. Encoders validate and throw a clear Error; decoders throw PayloadError. Pure, no I/O.
+import { validateInputCommand, type InputCommand } from '../../shared/sim/input.ts';
+import type { PlayerCommand, PlayerJoin, TickInputRecord } from '../../shared/sim/types.ts';
+import { ByteReader, ByteWriter, PayloadError } from './byte-io.ts';
+import { LOG_FORMAT_VERSION, MAX_HEADER_STRING_BYTES, MAX_NAME_BYTES, MAX_PLAYER_ID, type LogHeader } from './log-format.ts';
+
+const SEED_NUMBER = 0;
+const SEED_STRING = 1;
+
+/** Command field-presence bits: a field is stored only when non-zero. */
+const Field = { MoveX: 1, MoveZ: 2, Yaw: 4, Pitch: 8, Buttons: 16 } as const;
+const FIELD_MASK = 31;
+
+const utf8Bytes = (text: string): number => new TextEncoder().encode(text).length;
+
+function checkHeaderString(value: unknown, field: string): string {
+  if (typeof value !== 'string') throw new Error(`log header: ${field} must be a string, got ${typeof value}`);
+  if (utf8Bytes(value) > MAX_HEADER_STRING_BYTES) throw new Error(`log header: ${field} is longer than ${MAX_HEADER_STRING_BYTES} bytes`);
+  return value;
+}
+
+function checkCount(value: unknown, field: string, max: number): number {
+  if (typeof value !== 'number' || !Number.isInteger(value) || value < 0 || value > max) {
+    throw new Error(`log header: ${field} must be an integer in [0, ${max}], got ${String(value)}`);
+  }
+  return value;
+}
+
+/** Encodes a header payload; throws a clear Error on a field out of range. */
+export function encodeHeader(h: LogHeader): Uint8Array {
+  if (h.formatVersion !== LOG_FORMAT_VERSION) throw new Error(`log header: this build writes format version ${LOG_FORMAT_VERSION}, not ${h.formatVersion}`);
+  const w = new ByteWriter();
+  w.string(checkHeaderString(h.joltVersion, 'joltVersion'));
+  if (checkHeaderString(h.scenario, 'scenario') === '') throw new Error('log header: scenario name is empty');
+  w.string(h.scenario);
+  const names = Object.keys(h.params).sort();
+  w.uvarint(names.length);
+  for (const name of names) {
+    const value = h.params[name];
+    if (typeof value !== 'number' || !Number.isFinite(value)) throw new Error(`log header: parameter ${name} must be a finite number, got ${String(value)}`);
+    w.string(checkHeaderString(name, `parameter name "${name}"`));
+    w.f64(value);
+  }
+  if (typeof h.seed === 'number') {
+    if (!Number.isFinite(h.seed)) throw new Error(`log header: seed must be finite, got ${h.seed}`);
+    w.u8(SEED_NUMBER);
+    w.f64(h.seed);
+  } else {
+    w.u8(SEED_STRING);
+    w.string(checkHeaderString(h.seed, 'seed'));
+  }
+  w.uvarint(checkCount(h.tickRateHz, 'tickRateHz', 10_000));
+  if (h.tickRateHz === 0) throw new Error('log header: tickRateHz must be positive');
+  w.uvarint(checkCount(h.hashEveryTicks, 'hashEveryTicks', 0xffffffff));
+  w.uvarint(checkCount(h.checkpointEveryTicks, 'checkpointEveryTicks', 0xffffffff));
+  w.string(checkHeaderString(h.createdBy, 'createdBy'));
+  return w.finish();
+}
+
+/** Decodes a header payload (the format version comes from the prelude). */
+export function decodeHeader(payload: Uint8Array, formatVersion: number): LogHeader {
+  const r = new ByteReader(payload);
+  const joltVersion = r.string(MAX_HEADER_STRING_BYTES, 'joltVersion');
+  const scenario = r.string(MAX_HEADER_STRING_BYTES, 'scenario');
+  if (scenario === '') throw new PayloadError('scenario name is empty');
+  const count = r.uvarint('parameter count');
+  const params: Record<string, number> = {};
+  let prev = '';
+  for (let i = 0; i < count; i++) {
+    const name = r.string(MAX_HEADER_STRING_BYTES, 'parameter name');
+    if (i > 0 && !(name > prev)) throw new PayloadError(`parameter names not sorted/unique at "${name}"`);
+    const value = r.f64(`parameter ${name}`);
+    if (!Number.isFinite(value)) throw new PayloadError(`parameter ${name} is not finite`);
+    params[name] = value;
+    prev = name;
+  }
+  const kind = r.u8('seed kind');
+  let seed: number | string;
+  if (kind === SEED_NUMBER) {
+    seed = r.f64('seed');
+    if (!Number.isFinite(seed)) throw new PayloadError('seed is not finite');
+  } else if (kind === SEED_STRING) {
+    seed = r.string(MAX_HEADER_STRING_BYTES, 'seed');
+  } else {
+    throw new PayloadError(`unknown seed kind ${kind}`);
+  }
+  const tickRateHz = r.uvarint('tick rate');
+  if (tickRateHz === 0) throw new PayloadError('tick rate is 0');
+  const hashEveryTicks = r.uvarint('hash interval');
+  const checkpointEveryTicks = r.uvarint('checkpoint interval');
+  const createdBy = r.string(MAX_HEADER_STRING_BYTES, 'createdBy');
+  r.expectEnd('header');
+  return { formatVersion, joltVersion, scenario, params, seed, tickRateHz, hashEveryTicks, checkpointEveryTicks, createdBy };
+}
+
+function checkPlayerId(id: unknown, where: string): number {
+  if (typeof id !== 'number' || !Number.isInteger(id) || id < 0 || id > MAX_PLAYER_ID) {
+    throw new Error(`${where}: player id must be an integer in [0, ${MAX_PLAYER_ID}], got ${String(id)}`);
+  }
+  return id;
+}
+
+function checkAscending(ids: number[], where: string): void {
+  for (let i = 1; i < ids.length; i++) {
+    if (!(ids[i] > ids[i - 1])) throw new Error(`${where}: player ids must be sorted ascending and unique (${ids[i - 1]} then ${ids[i]})`);
+  }
+}
+
+/** Validates a tick's input record against what the log can store; throws a clear Error naming the field. */
+export function checkTickRecord(rec: TickInputRecord): void {
+  if (rec === null || typeof rec !== 'object') throw new Error('tick record must be an object');
+  if (!Number.isSafeInteger(rec.tick) || rec.tick < 0) throw new Error(`tick record: tick must be a non-negative integer, got ${String(rec.tick)}`);
+  const where = `tick ${rec.tick}`;
+  if (!Array.isArray(rec.leaves) || !Array.isArray(rec.joins) || !Array.isArray(rec.commands)) {
+    throw new Error(`${where}: leaves, joins and commands must be arrays`);
+  }
+  checkAscending(rec.leaves.map((id) => checkPlayerId(id, `${where} leave`)), `${where} leaves`);
+  checkAscending(rec.joins.map((j) => checkPlayerId(j?.playerId, `${where} join`)), `${where} joins`);
+  for (const j of rec.joins) {
+    if (typeof j.name !== 'string') throw new Error(`${where}: join of player ${j.playerId} has no name string`);
+    if (utf8Bytes(j.name) > MAX_NAME_BYTES) throw new Error(`${where}: name of player ${j.playerId} is longer than ${MAX_NAME_BYTES} bytes`);
+  }
+  checkAscending(rec.commands.map((c) => checkPlayerId(c?.playerId, `${where} command`)), `${where} commands`);
+  for (const c of rec.commands) {
+    const v = validateInputCommand(c.input);
+    if (!v.ok) throw new Error(`${where}: command of player ${c.playerId} is invalid: ${v.error}`);
+    if (v.clamped) throw new Error(`${where}: command of player ${c.playerId} is not a validated InputCommand (pass it through validateInputCommand first)`);
+  }
+}
+
+function writeCommand(w: ByteWriter, cmd: InputCommand): void {
+  const mask =
+    (cmd.moveX !== 0 ? Field.MoveX : 0) |
+    (cmd.moveZ !== 0 ? Field.MoveZ : 0) |
+    (cmd.yaw !== 0 ? Field.Yaw : 0) |
+    (cmd.pitch !== 0 ? Field.Pitch : 0) |
+    (cmd.buttons !== 0 ? Field.Buttons : 0);
+  w.u8(mask);
+  if (mask & Field.MoveX) w.i8(cmd.moveX);
+  if (mask & Field.MoveZ) w.i8(cmd.moveZ);
+  if (mask & Field.Yaw) w.u16(cmd.yaw);
+  if (mask & Field.Pitch) w.i16(cmd.pitch);
+  if (mask & Field.Buttons) w.u8(cmd.buttons);
+}
+
+/** Encodes a tick record payload; `check` (default true) validates it first. */
+export function encodeTick(rec: TickInputRecord, w: ByteWriter = new ByteWriter(64), check = true): Uint8Array {
+  if (check) checkTickRecord(rec);
+  w.uvarint(rec.tick);
+  w.uvarint(rec.leaves.length);
+  for (const id of rec.leaves) w.uvarint(id);
+  w.uvarint(rec.joins.length);
+  for (const j of rec.joins) {
+    w.uvarint(j.playerId);
+    w.string(j.name);
+  }
+  w.uvarint(rec.commands.length);
+  for (const c of rec.commands) {
+    w.uvarint(c.playerId);
+    writeCommand(w, c.input);
+  }
+  return w.finish();
+}
+
+function readPlayerId(r: ByteReader, prev: number, what: string): number {
+  const id = r.uvarint(what);
+  if (id > MAX_PLAYER_ID) throw new PayloadError(`${what} ${id} exceeds ${MAX_PLAYER_ID}`);
+  if (!(id > prev)) throw new PayloadError(`${what} ${id} not sorted/unique (after ${prev})`);
+  return id;
+}
+
+/** Decodes a tick record payload into a TickInputRecord (commands re-validated). */
+export function decodeTick(payload: Uint8Array): TickInputRecord {
+  const r = new ByteReader(payload);
+  const tick = r.uvarint('tick');
+  const leaves: number[] = [];
+  const nLeaves = r.uvarint('leave count');
+  for (let i = 0, prev = -1; i < nLeaves; i++) {
+    prev = readPlayerId(r, prev, 'leaving player id');
+    leaves.push(prev);
+  }
+  const joins: PlayerJoin[] = [];
+  const nJoins = r.uvarint('join count');
+  for (let i = 0, prev = -1; i < nJoins; i++) {
+    const playerId = (prev = readPlayerId(r, prev, 'joining player id'));
+    joins.push({ playerId, name: r.string(MAX_NAME_BYTES, 'player name') });
+  }
+  const commands: PlayerCommand[] = [];
+  const nCommands = r.uvarint('command count');
+  for (let i = 0, prev = -1; i < nCommands; i++) {
+    const playerId = (prev = readPlayerId(r, prev, 'command player id'));
+    const mask = r.u8('command field mask');
+    if (mask & ~FIELD_MASK) throw new PayloadError(`command of player ${playerId} has unknown field bits 0x${mask.toString(16)}`);
+    const input: InputCommand = {
+      moveX: mask & Field.MoveX ? r.i8('moveX') : 0,
+      moveZ: mask & Field.MoveZ ? r.i8('moveZ') : 0,
+      yaw: mask & Field.Yaw ? r.u16('yaw') : 0,
+      pitch: mask & Field.Pitch ? r.i16('pitch') : 0,
+      buttons: mask & Field.Buttons ? r.u8('buttons') : 0,
+    };
+    const v = validateInputCommand(input);
+    if (!v.ok || v.clamped) throw new PayloadError(`command of player ${playerId} is out of range`);
+    commands.push({ playerId, input });
+  }
+  r.expectEnd('tick record');
+  return { tick, leaves, joins, commands };
+}
+
+const HEX = /^[0-9a-f]{16}$/;
+
+function writeHash(w: ByteWriter, hash: string): void {
+  if (typeof hash !== 'string' || !HEX.test(hash)) throw new Error(`state hash must be 16 lowercase hex digits, got ${JSON.stringify(hash)}`);
+  for (let i = 0; i < 16; i += 2) w.u8(parseInt(hash.slice(i, i + 2), 16));
+}
+
+function readHash(r: ByteReader): string {
+  const b = r.bytes(8, 'hash');
+  let s = '';
+  for (let i = 0; i < 8; i++) s += (b[i] < 16 ? '0' : '') + b[i].toString(16);
+  return s;
+}
+
+function checkTick(tick: number, what: string): void {
+  if (!Number.isSafeInteger(tick) || tick < 0) throw new Error(`${what}: tick must be a non-negative integer, got ${String(tick)}`);
+}
+
+/** Encodes a hash record payload: the tick counter when hashed and the 64-bit hash. */
+export function encodeHash(tick: number, hash: string): Uint8Array {
+  checkTick(tick, 'hash record');
+  const w = new ByteWriter(16);
+  w.uvarint(tick);
+  writeHash(w, hash);
+  return w.finish();
+}
+
+/** Decodes a hash record payload. */
+export function decodeHash(payload: Uint8Array): { tick: number; hash: string } {
+  const r = new ByteReader(payload);
+  const tick = r.uvarint('tick');
+  const hash = readHash(r);
+  r.expectEnd('hash record');
+  return { tick, hash };
+}
+
+/** Encodes a checkpoint payload: the tick counter and the simulation's checkpoint bytes. */
+export function encodeCheckpoint(tick: number, bytes: Uint8Array): Uint8Array {
+  checkTick(tick, 'checkpoint record');
+  if (!(bytes instanceof Uint8Array)) throw new Error('checkpoint record: bytes must be a Uint8Array');
+  const w = new ByteWriter(bytes.length + 8);
+  w.uvarint(tick);
+  w.bytes(bytes);
+  return w.finish();
+}
+
+/** Decodes a checkpoint payload (the bytes are a copy, safe to keep). */
+export function decodeCheckpoint(payload: Uint8Array): { tick: number; bytes: Uint8Array } {
+  const r = new ByteReader(payload);
+  const tick = r.uvarint('tick');
+  return { tick, bytes: payload.slice(r.pos) };
+}
+
+/** Encodes the end record payload: final tick counter and final state hash. */
+export function encodeEnd(tick: number, hash: string): Uint8Array {
+  checkTick(tick, 'end record');
+  const w = new ByteWriter(16);
+  w.uvarint(tick);
+  writeHash(w, hash);
+  return w.finish();
+}
+
+/** Decodes the end record payload. */
+export function decodeEnd(payload: Uint8Array): { tick: number; hash: string } {
+  const r = new ByteReader(payload);
+  const tick = r.uvarint('tick');
+  const hash = readHash(r);
+  r.expectEnd('end record');
+  return { tick, hash };
+}
