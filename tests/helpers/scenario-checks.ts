@@ -50,3 +50,24 @@ export async function expectSeedDeterminism(def: ScenarioDefinition, params: Rec
   const same = c.ids.length === a.ids.length && c.states.every((v, i) => Object.is(v, a.states[i]));
   expect(same).toBe(false);
 }
+
+/**
+ * Expects every dynamic scenario body to sit on the static surface below it (within `maxGapMetres`), at least 85% of
+ * them slower than `restSpeed` (m/s) and none faster than 8× that (a ball may still be rocking in a hollow).
+ */
+export function expectRestingOnSurface(h: ScenarioHarness, maxGapMetres: number, restSpeed: number): void {
+  const bodies = h.dynamicBodies();
+  expect(bodies.length).toBeGreaterThan(0);
+  const speeds: number[] = [];
+  for (const b of bodies) {
+    const p = b.position();
+    const ground = h.world.rayDownY(p.x, p.y, p.z, 50, true);
+    expect(ground, `body ${b.id} has terrain below it`).not.toBeNull();
+    expect(p.y - ground!, `body ${b.id} above the surface`).toBeGreaterThan(0);
+    expect(p.y - ground!, `body ${b.id} close to the surface`).toBeLessThan(maxGapMetres);
+    const v = b.linearVelocity();
+    speeds.push(Math.sqrt(v.x * v.x + v.y * v.y + v.z * v.z));
+  }
+  expect(Math.max(...speeds)).toBeLessThan(8 * restSpeed);
+  expect(speeds.filter((s) => s < restSpeed).length).toBeGreaterThanOrEqual(0.85 * bodies.length);
+}
