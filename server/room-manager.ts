@@ -24,7 +24,7 @@ export interface RoomFactory {
   /** Throws an Error with a clear message for an unknown scenario or bad parameters. */
   createSimulation(scenario: string, params: Readonly<Record<string, number>>, seed: number | string): Promise<RoomSimulationBuild>;
   /** A recorder for the room, or null when not recording. */
-  createRecorder?(room: { id: string; scenario: string; params: Readonly<Record<string, number>>; seed: number | string; startTick: number }): Promise<RoomRecorder | null>;
+  createRecorder?(room: { id: string; scenario: string; params: Readonly<Record<string, number>>; seed: number | string; sim: RoomSimulation }): Promise<RoomRecorder | null>;
   /** Whether `scenario` names a known scenario. */
   hasScenario(scenario: string): boolean;
 }
@@ -156,7 +156,7 @@ export class RoomManager {
     }
     let recorder: RoomRecorder | null = null;
     try {
-      recorder = (await this.opts.factory.createRecorder?.({ id, scenario, params: built.params, seed, startTick: built.sim.tick })) ?? null;
+      recorder = (await this.opts.factory.createRecorder?.({ id, scenario, params: built.params, seed, sim: built.sim })) ?? null;
     } catch (error) {
       built.sim.destroy();
       throw new RoomError('internal', `cannot start the recording of room ${id}: ${error instanceof Error ? error.message : String(error)}`);

@@ -29,11 +29,14 @@ export interface RoomSimulation {
   destroy(): void;
 }
 
-/** Where a room's input records go (the --record writer); append is called before each step. */
+/** Where a room's input records go (the --record writer). A recorder never throws into the room. */
 export interface RoomRecorder {
+  /** The exact record about to be stepped (write-ahead). */
   append(record: TickInputRecord): void;
-  /** Flushes and closes; the room has stopped ticking. */
-  close(): Promise<void>;
+  /** After the step; `tick` is the simulation's tick counter now, `hash` computes its state hash on demand. */
+  afterStep(tick: number, hash: () => string): void;
+  /** Writes the end record (none when the hash is null: the room failed), flushes and closes. */
+  close(finalTick: number, finalHash: string | null): Promise<void>;
 }
 
 /** The world after one snapshot tick, shared by every member's encoder (copies: valid after the tick). */
@@ -281,6 +284,7 @@ export class Room {
     const stepStarted = performance.now();
     const events = this.sim.step(record);
     m.physicsStep.observe((performance.now() - stepStarted) / 1000);
+    this.opts.recorder?.afterStep(this.sim.tick, () => this.sim.stateHash());
     for (const j of joins) {
       const p = this.players.get(j.playerId);
       if (p) p.inWorld = true;
@@ -351,7 +355,15 @@ export class Room {
       }
     }
     try {
-      await this.opts.recorder?.close();
+      if (this.opts.recorder) {
+        let hash: string | null = null;
+        try {
+          hash = this.sim.stateHash();
+        } catch {
+          hash = null; // a failed simulation may not hash; the log ends unterminated
+        }
+        await this.opts.recorder.close(this.sim.tick, hash);
+      }
     } catch (error) {
       this.opts.logger.error({ room: this.id, err: error }, 'closing the room recording failed');
     }

@@ -1,0 +1,66 @@
+// Tests for server/recorder.ts: a room's log holds the header, every applied record, periodic hashes and the end.
+import { mkdtempSync, readFileSync, readdirSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { afterAll, describe, expect, it } from 'vitest';
+import { readLogBytes } from '../../server/log/index.ts';
+import { silentLogger } from '../../server/logger.ts';
+import { createRoomRecorder, recordingFileName } from '../../server/recorder.ts';
+import type { TickInputRecord } from '../../shared/sim/types.ts';
+
+const root = mkdtempSync(join(tmpdir(), 'taos-rec-'));
+afterAll(() => rmSync(root, { recursive: true, force: true }));
+
+const record = (tick: number): TickInputRecord => ({
+  tick,
+  leaves: tick === 5 ? [1] : [],
+  joins: tick === 0 ? [{ playerId: 1, name: 'ann' }] : [],
+  commands: tick > 0 && tick < 5 ? [{ playerId: 1, input: { moveX: tick, moveZ: 0, yaw: 0, pitch: 0, buttons: 0 } }] : [],
+});
+
+describe('recorder', () => {
+  it('writes header, every tick record, periodic hashes and the end record', async () => {
+    const dir = join(root, 'a');
+    const rec = await createRoomRecorder({ dir, roomId: 'r1', scenario: 'character-course', params: { k: 2 }, seed: 7, startTick: 0, initialHash: '00000000000000aa', logger: silentLogger(), hashEveryTicks: 4, createdAt: new Date(Date.UTC(2024, 0, 2, 3, 4, 5)) });
+    expect(rec.path).toBe(join(dir, 'r1-20240102T030405Z.taoslog'));
+    for (let t = 0; t < 10; t++) {
+      rec.append(record(t));
+      rec.afterStep(t + 1, () => (t + 1).toString(16).padStart(16, '0'));
+    }
+    await rec.close(10, '00000000000000ff');
+    const log = readLogBytes(new Uint8Array(readFileSync(rec.path)));
+    expect(log.outcome.status).toBe('complete');
+    expect(log.header).toMatchObject({ scenario: 'character-course', params: { k: 2 }, seed: 7, tickRateHz: 60, hashEveryTicks: 4 });
+    const ticks = log.entries.flatMap((e) => (e.type === 'tick' ? [e.record] : []));
+    expect(ticks).toEqual(Array.from({ length: 10 }, (_, t) => record(t)));
+    const hashes = log.entries.flatMap((e) => (e.type === 'hash' ? [e.tick] : []));
+    expect(hashes).toEqual([0, 4, 8]);
+    expect(log.entries.find((e) => e.type === 'hash' && e.tick === 8)).toMatchObject({ hash: '0000000000000008' });
+    expect(log.entries.at(-1)).toMatchObject({ type: 'end', tick: 10, hash: '00000000000000ff' });
+  });
+
+  it('leaves the log unterminated when the room failed mid-tick', async () => {
+    const dir = join(root, 'b');
+    const rec = await createRoomRecorder({ dir, roomId: 'r2', scenario: 's', params: {}, seed: 1, startTick: 0, initialHash: '0000000000000000', logger: silentLogger() });
+    rec.append(record(0));
+    rec.afterStep(1, () => '0000000000000001');
+    rec.append(record(1)); // the step of tick 1 threw: the counter stays at 1
+    await rec.close(1, null);
+    const log = readLogBytes(new Uint8Array(readFileSync(rec.path)));
+    expect(log.outcome.status).toBe('unterminated');
+    expect(log.outcome.ticks).toBe(2);
+  });
+
+  it('refuses to start anywhere but tick 0 and never overwrites an earlier log', async () => {
+    const dir = join(root, 'c');
+    const base = { dir, roomId: 'r3', scenario: 's', params: {}, seed: 1, initialHash: '0000000000000000', logger: silentLogger(), createdAt: new Date(0) };
+    await expect(createRoomRecorder({ ...base, startTick: 3 })).rejects.toThrow(/tick 0/);
+    const a = await createRoomRecorder({ ...base, startTick: 0 });
+    const b = await createRoomRecorder({ ...base, startTick: 0 });
+    expect(a.path).not.toBe(b.path);
+    await a.close(0, '0000000000000000');
+    await b.close(0, '0000000000000000');
+    expect(readdirSync(dir)).toHaveLength(2);
+    expect(recordingFileName('x', new Date(0))).toBe('x-19700101T000000Z.taoslog');
+  });
+});
