@@ -1,6 +1,7 @@
 // The HTTP half of the server's single port: /healthz, /metrics, the rooms API and the static client files.
 // Routing and request parsing only; what the answers contain comes from the HttpApi the server passes in.
 import { createServer, type IncomingMessage, type Server, type ServerResponse } from 'node:http';
+import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { RoomInfo } from './room.ts';
 
 /** What the HTTP routes read and do. */
@@ -73,11 +74,11 @@ function parseCreateRoom(text: string): { scenario: string; params?: Record<stri
 }
 
 const ERROR_STATUS: Readonly<Record<string, number>> = {
-  'bad-message': 400,
-  'room-not-found': 404,
-  'room-full': 409,
-  'server-full': 503,
-  'server-shutdown': 503,
+  [ErrorCode.BadMessage]: 400,
+  [ErrorCode.RoomNotFound]: 404,
+  [ErrorCode.RoomFull]: 409,
+  [ErrorCode.ServerFull]: 503,
+  [ErrorCode.Internal]: 500,
 };
 
 async function route(api: HttpApi, req: IncomingMessage, res: ServerResponse): Promise<void> {

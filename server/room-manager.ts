@@ -1,5 +1,6 @@
 // The process's rooms: the default room, rooms created on demand from a scenario, lookup by id, the rooms limit,
 // and closing a room once it has been empty for a grace period (never the default room).
+import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { Clock, TimerHandle } from './clock.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
@@ -103,19 +104,19 @@ export class RoomManager {
    * room with a fresh id from a scenario alone; otherwise the default room. Throws RoomError when it cannot.
    */
   async resolve(req: RoomRequest): Promise<Room> {
-    if (this.closing) throw new RoomError('server-shutdown', 'the server is shutting down');
+    if (this.closing) throw new RoomError(ErrorCode.Internal, 'the server is shutting down');
     if (req.roomId !== undefined) {
-      if (!ROOM_ID_RE.test(req.roomId)) throw new RoomError('bad-message', `room id must match ${ROOM_ID_RE}, got ${JSON.stringify(req.roomId)}`);
+      if (!ROOM_ID_RE.test(req.roomId)) throw new RoomError(ErrorCode.BadMessage, `room id must match ${ROOM_ID_RE}, got ${JSON.stringify(req.roomId)}`);
       const existing = this.rooms.get(req.roomId);
       if (existing) {
         if (req.scenario !== undefined && req.scenario !== existing.scenarioName) {
-          throw new RoomError('bad-message', `room ${req.roomId} runs scenario ${existing.scenarioName}, not ${req.scenario}`);
+          throw new RoomError(ErrorCode.BadMessage, `room ${req.roomId} runs scenario ${existing.scenarioName}, not ${req.scenario}`);
         }
         return existing;
       }
       const pending = this.creating.get(req.roomId);
       if (pending) return pending;
-      if (req.scenario === undefined) throw new RoomError('room-not-found', `no room "${req.roomId}" (give a scenario to create it)`);
+      if (req.scenario === undefined) throw new RoomError(ErrorCode.RoomNotFound, `no room "${req.roomId}" (give a scenario to create it)`);
       return this.create(req.roomId, req.scenario, req.params ?? {});
     }
     if (req.scenario !== undefined) {
@@ -125,22 +126,22 @@ export class RoomManager {
       return this.create(id, req.scenario, req.params ?? {});
     }
     const def = this.rooms.get(DEFAULT_ROOM_ID);
-    if (!def) throw new RoomError('room-not-found', 'the default room is not open');
+    if (!def) throw new RoomError(ErrorCode.RoomNotFound, 'the default room is not open');
     return def;
   }
 
   /** Creates a room (shared by concurrent requests for the same id). Throws RoomError for limits and bad scenarios. */
   create(id: string, scenario: string, params: Readonly<Record<string, number>>): Promise<Room> {
-    if (this.closing) return Promise.reject(new RoomError('server-shutdown', 'the server is shutting down'));
+    if (this.closing) return Promise.reject(new RoomError(ErrorCode.Internal, 'the server is shutting down'));
     const existing = this.rooms.get(id);
     if (existing) return Promise.resolve(existing);
     const pending = this.creating.get(id);
     if (pending) return pending;
     const maxRooms = this.opts.maxRooms ?? 6;
     if (this.rooms.size + this.creating.size >= maxRooms) {
-      return Promise.reject(new RoomError('server-full', `the server already runs its limit of ${maxRooms} rooms`));
+      return Promise.reject(new RoomError(ErrorCode.ServerFull, `the server already runs its limit of ${maxRooms} rooms`));
     }
-    if (!this.opts.factory.hasScenario(scenario)) return Promise.reject(new RoomError('bad-message', `unknown scenario "${scenario}"`));
+    if (!this.opts.factory.hasScenario(scenario)) return Promise.reject(new RoomError(ErrorCode.BadMessage, `unknown scenario "${scenario}"`));
     const promise = this.build(id, scenario, params).finally(() => this.creating.delete(id));
     this.creating.set(id, promise);
     return promise;
@@ -152,14 +153,14 @@ export class RoomManager {
     try {
       built = await this.opts.factory.createSimulation(scenario, params, seed);
     } catch (error) {
-      throw new RoomError('bad-message', `cannot create room ${id}: ${error instanceof Error ? error.message : String(error)}`);
+      throw new RoomError(ErrorCode.BadMessage, `cannot create room ${id}: ${error instanceof Error ? error.message : String(error)}`);
     }
     let recorder: RoomRecorder | null = null;
     try {
       recorder = (await this.opts.factory.createRecorder?.({ id, scenario, params: built.params, seed, sim: built.sim })) ?? null;
     } catch (error) {
       built.sim.destroy();
-      throw new RoomError('internal', `cannot start the recording of room ${id}: ${error instanceof Error ? error.message : String(error)}`);
+      throw new RoomError(ErrorCode.Internal, `cannot start the recording of room ${id}: ${error instanceof Error ? error.message : String(error)}`);
     }
     const room = new Room(built.sim, {
       id,

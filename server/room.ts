@@ -2,6 +2,7 @@
 // record (stepped, recorded), and delivery of each tick's events and world frames to its members. Protocol-agnostic.
 import { BODY_STATE_STRIDE } from '../shared/physics/index.ts';
 import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '../shared/sim/types.ts';
+import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
 import type { Clock } from './clock.ts';
 import { InputBuffer, OfferResult } from './input-buffer.ts';
@@ -189,13 +190,13 @@ export class Room {
 
   /** Adds a member as a new player; its join goes into the next tick's record. Throws RoomError when refused. */
   join(member: RoomMember, name: string): JoinResult {
-    if (this.closed) throw new RoomError('room_closed', `room ${this.id} is closed`);
+    if (this.closed) throw new RoomError(ErrorCode.RoomNotFound, `room ${this.id} is closed`);
     if (this.players.size >= this.opts.maxClients) {
-      throw new RoomError('room_full', `room ${this.id} is full (${this.opts.maxClients} clients)`);
+      throw new RoomError(ErrorCode.RoomFull, `room ${this.id} is full (${this.opts.maxClients} clients)`);
     }
     const charactersPending = [...this.players.values()].filter((p) => !p.inWorld).length;
     if (this.lastBodyCount + charactersPending + 1 > this.opts.maxBodies) {
-      throw new RoomError('room_body_limit', `room ${this.id} is at its body limit (${this.opts.maxBodies} bodies): no room for another character`);
+      throw new RoomError(ErrorCode.RoomFull, `room ${this.id} is at its body limit (${this.opts.maxBodies} bodies): no room for another character`);
     }
     const playerId = this.nextPlayerId++;
     const joinTick = this.sim.tick;

@@ -1,0 +1,208 @@
+// Tests for server/room.ts with a recording stand-in simulation: the exact records stepped (joins, leaves, inputs
+// applied or repeated), event and frame delivery, limits, pausing when empty, failure isolation.
+import { describe, expect, it } from 'vitest';
+import { ManualClock } from '../../server/clock.ts';
+import { OfferResult } from '../../server/input-buffer.ts';
+import { silentLogger } from '../../server/logger.ts';
+import { createMetrics } from '../../server/metrics.ts';
+import { Room, RoomError, type BodyStates, type RoomMember, type RoomOptions, type RoomSimulation, type WorldFrame } from '../../server/room.ts';
+import { NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input.ts';
+import type { CharacterState, SimEvent, TickInputRecord } from '../../shared/sim/types.ts';
+
+// A stand-in simulation: remembers every record, reports a join/leave event per player, one body per player.
+class FakeSim implements RoomSimulation {
+  tick = 0;
+  readonly records: TickInputRecord[] = [];
+  readonly players = new Set<number>();
+  destroyed = false;
+  failOnTick = -1;
+
+  step(record: TickInputRecord): SimEvent[] {
+    if (record.tick !== this.tick) throw new Error(`fake sim: got tick ${record.tick}, at ${this.tick}`);
+    if (record.tick === this.failOnTick) throw new Error('fake sim exploded');
+    this.records.push(structuredClone(record));
+    const events: SimEvent[] = [];
+    for (const id of record.leaves) {
+      this.players.delete(id);
+      events.push({ type: 'playerLeft', tick: record.tick, playerId: id });
+    }
+    for (const j of record.joins) {
+      this.players.add(j.playerId);
+      events.push({ type: 'playerJoined', tick: record.tick, playerId: j.playerId, name: j.name });
+    }
+    this.tick++;
+    return events;
+  }
+  stateHash(): string {
+    return this.tick.toString(16).padStart(16, '0');
+  }
+  characters(): CharacterState[] {
+    return [];
+  }
+  readBodyStates(): BodyStates {
+    const ids = Uint32Array.from([...this.players].sort((a, b) => a - b));
+    return { count: ids.length, ids, states: new Float32Array(ids.length * 13), flags: new Uint8Array(ids.length) };
+  }
+  staticDescriptors() {
+    return [];
+  }
+  bodyDescriptor() {
+    return undefined;
+  }
+  destroy(): void {
+    this.destroyed = true;
+  }
+}
+
+class Member implements RoomMember {
+  readonly events: Array<[number, readonly SimEvent[]]> = [];
+  readonly frames: WorldFrame[] = [];
+  closedWith: string | null = null;
+  throwOnFrame = false;
+  deliverEvents(tick: number, events: readonly SimEvent[]): void {
+    this.events.push([tick, events]);
+  }
+  deliverFrame(frame: WorldFrame): void {
+    if (this.throwOnFrame) throw new Error('member broke');
+    this.frames.push(frame);
+  }
+  roomClosed(reason: string): void {
+    this.closedWith = reason;
+  }
+}
+
+const cmd = (moveX: number): InputCommand => ({ ...NEUTRAL_INPUT, moveX });
+const TICK_MS = 1000 / 60;
+
+function makeRoom(over: Partial<RoomOptions> = {}): { room: Room; sim: FakeSim; clock: ManualClock } {
+  const sim = new FakeSim();
+  const clock = new ManualClock();
+  const room = new Room(sim, {
+    id: 'r',
+    scenarioName: 'fake',
+    params: {},
+    seed: 1,
+    clock,
+    metrics: createMetrics({ processMetrics: false }),
+    logger: silentLogger(),
+    snapshotRateHz: 30,
+    maxClients: 4,
+    maxBodies: 100,
+    ...over,
+  });
+  room.start();
+  return { room, sim, clock };
+}
+
+describe('Room', () => {
+  it('puts a join in the next record and applies the player\'s inputs from the tick after', () => {
+    const { room, sim, clock } = makeRoom();
+    const a = new Member();
+    const joined = room.join(a, 'ann');
+    expect(joined).toEqual({ playerId: 1, joinTick: 0, firstInputTick: 1 });
+    room.offerInput(1, 1, cmd(10));
+    room.offerInput(1, 3, cmd(30));
+    clock.advance(3 * TICK_MS);
+    expect(sim.records).toEqual([
+      { tick: 0, leaves: [], joins: [{ playerId: 1, name: 'ann' }], commands: [] },
+      { tick: 1, leaves: [], joins: [], commands: [{ playerId: 1, input: cmd(10) }] },
+      { tick: 2, leaves: [], joins: [], commands: [{ playerId: 1, input: cmd(10) }] },
+      { tick: 3, leaves: [], joins: [], commands: [{ playerId: 1, input: cmd(30) }] },
+    ]);
+    expect(a.events[0]).toEqual([0, [{ type: 'playerJoined', tick: 0, playerId: 1, name: 'ann' }]]);
+  });
+
+  it('drops inputs for ticks already applied and keeps commands sorted by player', () => {
+    const { room, sim, clock } = makeRoom();
+    room.join(new Member(), 'a');
+    room.join(new Member(), 'b');
+    clock.advance(2 * TICK_MS);
+    expect(room.offerInput(2, 1, cmd(5))).toBe(OfferResult.Late);
+    room.offerInput(2, 3, cmd(7));
+    room.offerInput(1, 3, cmd(8));
+    clock.advance(TICK_MS);
+    expect(sim.records[3].commands).toEqual([
+      { playerId: 1, input: cmd(8) },
+      { playerId: 2, input: cmd(7) },
+    ]);
+    expect(room.offerInput(99, 4, cmd(1))).toBeNull();
+  });
+
+  it('records a leave on the next tick, and a join that never reached a record leaves no trace', () => {
+    const { room, sim, clock } = makeRoom();
+    room.join(new Member(), 'a');
+    clock.advance(TICK_MS);
+    room.join(new Member(), 'b');
+    room.leave(2);
+    room.leave(1);
+    clock.advance(TICK_MS);
+    expect(sim.records.at(-1)).toEqual({ tick: 2, leaves: [1], joins: [], commands: [] });
+    expect(sim.records.flatMap((r) => r.joins.map((j) => j.playerId))).toEqual([1]);
+  });
+
+  it('sends frames at the snapshot rate and events every tick they happen', () => {
+    const { room, clock } = makeRoom({ snapshotRateHz: 20 });
+    const m = new Member();
+    room.join(m, 'a');
+    clock.advance(59 * TICK_MS); // ticks 0..59
+    expect(m.frames.map((f) => f.tick)).toEqual([2, 5, 8, 11, 14, 17, 20, 23, 26, 29, 32, 35, 38, 41, 44, 47, 50, 53, 56, 59]);
+    expect(m.frames[0].bodies.count).toBe(1);
+    expect(m.events.map(([t]) => t)).toEqual([0]);
+  });
+
+  it('refuses joins beyond the client and body limits with clear codes', () => {
+    const full = makeRoom({ maxClients: 1 }).room;
+    full.join(new Member(), 'a');
+    expect(() => full.join(new Member(), 'b')).toThrow(RoomError);
+    try {
+      full.join(new Member(), 'b');
+    } catch (e) {
+      expect((e as RoomError).code).toBe('room-full');
+    }
+    const tight = makeRoom({ maxBodies: 1 }).room;
+    tight.join(new Member(), 'a');
+    expect(() => tight.join(new Member(), 'b')).toThrow(/body limit/);
+  });
+
+  it('pauses while empty and resumes on a join', () => {
+    const { room, sim, clock } = makeRoom();
+    clock.advance(1000);
+    expect(sim.tick).toBe(0);
+    room.join(new Member(), 'a');
+    clock.advance(10 * TICK_MS);
+    expect(sim.tick).toBe(11);
+    room.leave(1);
+    clock.advance(1000);
+    expect(sim.tick).toBe(12); // the tick that recorded the leave, then nothing
+    expect(sim.records.at(-1)?.leaves).toEqual([1]);
+  });
+
+  it('removes a member whose delivery throws and keeps serving the others', () => {
+    const { room, clock } = makeRoom({ snapshotRateHz: 60 });
+    const bad = new Member();
+    const good = new Member();
+    room.join(bad, 'bad');
+    room.join(good, 'good');
+    bad.throwOnFrame = true;
+    clock.advance(5 * TICK_MS);
+    expect(room.clientCount).toBe(1);
+    expect(good.frames.length).toBe(6);
+  });
+
+  it('closes with a reason when the simulation fails, telling every member', async () => {
+    const { room, sim, clock } = makeRoom();
+    const m = new Member();
+    const reasons: string[] = [];
+    room.onClose((r) => reasons.push(r));
+    room.join(m, 'a');
+    sim.failOnTick = 3;
+    clock.advance(10 * TICK_MS);
+    await Promise.resolve();
+    await Promise.resolve();
+    expect(room.closed).toBe(true);
+    expect(m.closedWith).toMatch(/fake sim exploded/);
+    expect(sim.destroyed).toBe(true);
+    expect(reasons).toHaveLength(1);
+    expect(() => room.join(new Member(), 'late')).toThrow(/closed/);
+  });
+});
