@@ -13,7 +13,7 @@ describe('height-field', () => {
     try {
       const [terrain] = h.scenarioBodyIds().map((id) => h.world.getBody(id)!);
       expect(terrain.motion).toBe('static');
-      const shape = terrain.shape as { kind: string; sampleCount: number; heights: number[] };
+      const shape = terrain.shape as { kind: string; sampleCount: number; heights: ArrayLike<number> };
       expect(shape.kind).toBe('heightField');
       expect(shape.sampleCount).toBe(scenario.params.samplesPerSide.default);
       expect(shape.heights).toHaveLength(shape.sampleCount * shape.sampleCount);

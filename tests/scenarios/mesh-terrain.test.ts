@@ -15,7 +15,7 @@ describe('mesh-terrain', () => {
       expect(terrain.motion).toBe('static');
       expect(terrain.shape?.kind).toBe('mesh');
       const cells = scenario.params.cells.default;
-      expect((terrain.shape as { indices: number[] }).indices.length).toBe(cells * cells * 6);
+      expect((terrain.shape as { indices: ArrayLike<number> }).indices.length).toBe(cells * cells * 6);
       expect(h.spawnOptions.get(terrain.id)?.color).toBeDefined();
     } finally {
       h.destroy();
