@@ -1,0 +1,42 @@
+// Messages a client sends to the server, as typed objects (the wire form of each is in codec.ts and
+// docs/protocol.md). The server only ever sees these after validation.ts has checked them.
+import type { InputCommand } from '../sim/input.ts';
+
+/** First message on a connection: protocol version, display name, and the room to join (null: the default room). */
+export interface HelloMessage {
+  type: 'hello';
+  version: number;
+  /** 1–32 characters after trimming, no control characters. */
+  name: string;
+  /** Room id (letters, digits, '-', '_'), or null for the default room. */
+  room: string | null;
+}
+
+/** Commands for consecutive ticks firstTick, firstTick+1, …; the newest is last, the earlier ones are repeats. */
+export interface InputMessage {
+  type: 'input';
+  firstTick: number;
+  /** 1..MAX_INPUT_COMMANDS_PER_MESSAGE commands, each passed through validateInputCommand. */
+  commands: InputCommand[];
+}
+
+/** The client decoded the snapshot of this tick: the server may use it as a delta baseline. */
+export interface SnapshotAckMessage {
+  type: 'ack';
+  tick: number;
+}
+
+/** Clock-sync probe; the server answers at once with a pong echoing clientTimeMs. */
+export interface PingMessage {
+  type: 'ping';
+  /** The client's own monotonic clock (ms), opaque to the server. */
+  clientTimeMs: number;
+}
+
+/** The client is leaving on purpose. */
+export interface ClientByeMessage {
+  type: 'bye';
+}
+
+/** Every client→server message. */
+export type ClientMessage = HelloMessage | InputMessage | SnapshotAckMessage | PingMessage | ClientByeMessage;

@@ -1,0 +1,104 @@
+// Framing with msgpackr: every message is one msgpack array [opcode, …fields] in one binary WebSocket frame.
+// Encoders for both directions live here; decoding is checked in validation.ts (client→server) and
+// server-message-decoder.ts (server→client).
+import { Packr, Unpackr } from 'msgpackr';
+import type { SimEvent } from '../sim/types.ts';
+import type { ClientMessage } from './client-messages.ts';
+import { packDescriptors } from './descriptor-codec.ts';
+import { ClientOpcode, ServerOpcode } from './opcodes.ts';
+import type { ServerMessage } from './server-messages.ts';
+
+// Plain msgpack: no record extension, no typed-array extensions, maps decode to plain objects.
+const packr = new Packr({ useRecords: false, moreTypes: false });
+const unpackr = new Unpackr({ useRecords: false, moreTypes: false, mapsAsObjects: true });
+
+/** Turns what a socket delivers (Uint8Array, ArrayBuffer, a view, or ws's Buffer[] fragments) into bytes; null if not binary. */
+export function toBytes(data: unknown): Uint8Array | null {
+  if (data instanceof Uint8Array) return data;
+  if (data instanceof ArrayBuffer) return new Uint8Array(data);
+  if (ArrayBuffer.isView(data)) return new Uint8Array(data.buffer, data.byteOffset, data.byteLength);
+  if (Array.isArray(data) && data.every((d) => d instanceof Uint8Array)) {
+    const total = data.reduce((n: number, d: Uint8Array) => n + d.length, 0);
+    const out = new Uint8Array(total);
+    let o = 0;
+    for (const d of data as Uint8Array[]) {
+      out.set(d, o);
+      o += d.length;
+    }
+    return out;
+  }
+  return null;
+}
+
+/** Decodes one msgpack value that must span the whole buffer; throws on malformed data or trailing bytes. */
+export function unpackFrame(bytes: Uint8Array): unknown {
+  return unpackr.unpack(bytes);
+}
+
+/** Encodes any plain value as msgpack (tests and tools; messages go through the typed encoders). */
+export function packValue(value: unknown): Uint8Array {
+  return packr.pack(value);
+}
+
+/** Encodes a client→server message. */
+export function encodeClientMessage(m: ClientMessage): Uint8Array {
+  switch (m.type) {
+    case 'hello':
+      return packr.pack([ClientOpcode.Hello, m.version, m.name, m.room]);
+    case 'input':
+      return packr.pack([ClientOpcode.Input, m.firstTick, m.commands.map((c) => [c.moveX, c.moveZ, c.yaw, c.pitch, c.buttons])]);
+    case 'ack':
+      return packr.pack([ClientOpcode.SnapshotAck, m.tick]);
+    case 'ping':
+      return packr.pack([ClientOpcode.Ping, m.clientTimeMs]);
+    case 'bye':
+      return packr.pack([ClientOpcode.Bye]);
+  }
+}
+
+/** A copy of an event without undefined fields (msgpack has no undefined). */
+function plainEvent(e: SimEvent): Record<string, unknown> {
+  const out: Record<string, unknown> = {};
+  for (const [k, v] of Object.entries(e)) if (v !== undefined) out[k] = v;
+  return out;
+}
+
+/** Encodes a server→client message. */
+export function encodeServerMessage(m: ServerMessage): Uint8Array {
+  switch (m.type) {
+    case 'welcome':
+      return packr.pack([
+        ServerOpcode.Welcome,
+        {
+          protocolVersion: m.protocolVersion,
+          playerId: m.playerId,
+          roomId: m.roomId,
+          tick: m.tick,
+          tickRateHz: m.tickRateHz,
+          snapshotRateHz: m.snapshotRateHz,
+          scenario: {
+            name: m.scenario.name,
+            description: m.scenario.description,
+            params: { ...m.scenario.params },
+            bounds: {
+              min: { x: m.scenario.bounds.min.x, y: m.scenario.bounds.min.y, z: m.scenario.bounds.min.z },
+              max: { x: m.scenario.bounds.max.x, y: m.scenario.bounds.max.y, z: m.scenario.bounds.max.z },
+            },
+          },
+          snapshotFormat: { positionSteps: [...m.snapshotFormat.positionSteps], rotationBits: m.snapshotFormat.rotationBits },
+          staticBodies: packDescriptors(m.staticBodies),
+          dynamicBodies: packDescriptors(m.dynamicBodies),
+        },
+      ]);
+    case 'pong':
+      return packr.pack([ServerOpcode.Pong, m.clientTimeMs, m.serverTick, m.serverTimeMs, m.missedInputTicks]);
+    case 'snapshot':
+      return packr.pack([ServerOpcode.Snapshot, m.bytes, m.descriptors.length > 0 ? packDescriptors(m.descriptors) : null]);
+    case 'events':
+      return packr.pack([ServerOpcode.Events, m.events.map(plainEvent)]);
+    case 'error':
+      return packr.pack([ServerOpcode.Error, m.code, m.message]);
+    case 'bye':
+      return packr.pack([ServerOpcode.Bye, m.reason, m.message]);
+  }
+}

@@ -1,0 +1,40 @@
+// Public surface of the wire protocol: the server and the client library import from here (pure, isomorphic).
+export { BitReader, BitWriter, bestExpGolombOrder, bitsFor, expGolombBits, unzigzag, zigzag } from './bit-stream.ts';
+export type { ClientByeMessage, ClientMessage, HelloMessage, InputMessage, PingMessage, SnapshotAckMessage } from './client-messages.ts';
+export { encodeClientMessage, encodeServerMessage, packValue, toBytes, unpackFrame } from './codec.ts';
+export { packDescriptors, parseShape, unpackDescriptors, type PackedDescriptors } from './descriptor-codec.ts';
+export * from './limits.ts';
+export { ByeReason, ClientOpcode, ErrorCode, PROTOCOL_VERSION, RECONNECTABLE_BYE_REASONS, ServerOpcode } from './opcodes.ts';
+export {
+  createSnapshotFormat,
+  DEFAULT_MAX_POSITION_STEP_METRES,
+  DEFAULT_ROTATION_BITS,
+  dequantizeAxis,
+  dequantizeRotation,
+  quantizeAxis,
+  quantizeRotation,
+  snapshotFormatFromSpec,
+  snapshotFormatSpec,
+  type Bounds,
+  type SnapshotFormat,
+  type SnapshotFormatSpec,
+} from './quantization.ts';
+export { decodeServerMessage, type ServerDecodeResult } from './server-message-decoder.ts';
+export type { ErrorMessage, EventsMessage, PongMessage, ScenarioInfo, ServerByeMessage, ServerMessage, SnapshotMessage, WelcomeMessage } from './server-messages.ts';
+export { decodeSnapshot, encodeSnapshot, readSnapshotHeader, type SnapshotHeader } from './snapshot-codec.ts';
+export {
+  BODY_Q_STRIDE,
+  BodyQ,
+  CHARACTER_Q_STRIDE,
+  CharacterQ,
+  dequantizeFrame,
+  emptyFrame,
+  framesEqual,
+  quantizeFrame,
+  type BodyStatesRead,
+  type QuantizedFrame,
+  type QuantizeFrameOptions,
+  type SnapshotView,
+} from './snapshot-frame.ts';
+export { SnapshotDecoder, SnapshotEncoder, TickHistory, type AckOutcome, type DecodedSnapshot, type EncodedSnapshot, type SnapshotEncoderStats } from './snapshot-stream.ts';
+export { checkPlayerName, checkRoomId, decodeClientMessage, type ClientDecodeResult } from './validation.ts';

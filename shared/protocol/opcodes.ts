@@ -1,0 +1,73 @@
+// Wire constants both ends import: the protocol version, opcodes by direction, error codes and bye reasons.
+// Every frame is a msgpack array whose first element is one of these opcodes (see docs/protocol.md).
+
+/** Bumped on any incompatible change to a message or the snapshot bit layout; hello and welcome must agree. */
+export const PROTOCOL_VERSION = 1;
+
+/** Opcodes of messages a client sends to the server (1–15). */
+export const ClientOpcode = {
+  Hello: 1,
+  Input: 2,
+  SnapshotAck: 3,
+  Ping: 4,
+  Bye: 5,
+} as const;
+export type ClientOpcode = (typeof ClientOpcode)[keyof typeof ClientOpcode];
+
+/** Opcodes of messages the server sends to a client (16–31). */
+export const ServerOpcode = {
+  Welcome: 16,
+  Pong: 17,
+  Snapshot: 18,
+  Events: 19,
+  Error: 20,
+  Bye: 21,
+} as const;
+export type ServerOpcode = (typeof ServerOpcode)[keyof typeof ServerOpcode];
+
+/** Machine-readable codes of error messages (and of validation failures on the server). */
+export const ErrorCode = {
+  /** Not a msgpack value, or trailing bytes after it. */
+  Malformed: 'malformed',
+  /** Larger than the protocol's frame limit. */
+  Oversize: 'oversize',
+  /** A msgpack value that is not a known message (opcode, arity, field types). */
+  BadMessage: 'bad-message',
+  /** An input command failed `validateInputCommand`, or an input batch is out of range. */
+  BadInput: 'bad-input',
+  /** A message that is valid but not allowed now (input before hello, a second hello, …). */
+  UnexpectedMessage: 'unexpected-message',
+  /** hello.version differs from PROTOCOL_VERSION. */
+  VersionMismatch: 'version-mismatch',
+  RoomNotFound: 'room-not-found',
+  RoomFull: 'room-full',
+  ServerFull: 'server-full',
+  /** Too many messages or inputs per second. */
+  RateLimited: 'rate-limited',
+  Internal: 'internal',
+} as const;
+export type ErrorCode = (typeof ErrorCode)[keyof typeof ErrorCode];
+
+/** Why the server ends a session; a client reconnects only after the reasons in RECONNECTABLE_BYE_REASONS. */
+export const ByeReason = {
+  ServerShutdown: 'server-shutdown',
+  RoomClosed: 'room-closed',
+  Kicked: 'kicked',
+  TooManyErrors: 'too-many-errors',
+  Flood: 'flood',
+  Timeout: 'timeout',
+  VersionMismatch: 'version-mismatch',
+  RoomFull: 'room-full',
+  ServerFull: 'server-full',
+  RoomNotFound: 'room-not-found',
+  ClientBye: 'client-bye',
+} as const;
+export type ByeReason = (typeof ByeReason)[keyof typeof ByeReason];
+
+/** Bye reasons after which trying again later can succeed (restarts, transient overload). */
+export const RECONNECTABLE_BYE_REASONS: ReadonlySet<string> = new Set<string>([
+  ByeReason.ServerShutdown,
+  ByeReason.Timeout,
+  ByeReason.ServerFull,
+  ByeReason.RoomFull,
+]);

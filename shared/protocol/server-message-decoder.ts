@@ -1,0 +1,156 @@
+// Decodes server→client frames on the client: msgpack, opcode, field types, descriptors and events are checked, so a
+// broken or hostile server produces a clear error result instead of an exception deep inside the client.
+import type { SimEvent } from '../sim/types.ts';
+import { toBytes, unpackFrame } from './codec.ts';
+import { unpackDescriptors } from './descriptor-codec.ts';
+import { ServerOpcode, type ByeReason, type ErrorCode } from './opcodes.ts';
+import type { ScenarioInfo, ServerMessage, WelcomeMessage } from './server-messages.ts';
+
+/** A decoded server message, or why it could not be decoded. */
+export type ServerDecodeResult = { ok: true; message: ServerMessage } | { ok: false; error: string };
+
+const EVENT_FIELDS: Record<SimEvent['type'], Record<string, 'number' | 'string' | 'number?'>> = {
+  sensorEnter: { sensorId: 'number', bodyId: 'number', playerId: 'number?' },
+  sensorExit: { sensorId: 'number', bodyId: 'number', playerId: 'number?' },
+  playerJoined: { playerId: 'number', name: 'string', bodyId: 'number?' },
+  playerLeft: { playerId: 'number' },
+  bodySpawned: { bodyId: 'number' },
+  bodyRemoved: { bodyId: 'number' },
+  scenario: { name: 'string', value: 'number' },
+};
+
+class DecodeError extends Error {}
+
+function need(cond: boolean, message: string): asserts cond {
+  if (!cond) throw new DecodeError(message);
+}
+
+function isObject(v: unknown): v is Record<string, unknown> {
+  return v !== null && typeof v === 'object' && !Array.isArray(v) && !ArrayBuffer.isView(v);
+}
+
+function num(v: unknown, what: string): number {
+  need(typeof v === 'number' && Number.isFinite(v), `${what} must be a finite number, got ${String(v)}`);
+  return v;
+}
+
+function int(v: unknown, what: string, min = 0): number {
+  need(typeof v === 'number' && Number.isInteger(v) && v >= min, `${what} must be an integer ≥ ${min}, got ${String(v)}`);
+  return v;
+}
+
+function str(v: unknown, what: string): string {
+  need(typeof v === 'string', `${what} must be a string`);
+  return v;
+}
+
+function vec3(v: unknown, what: string): { x: number; y: number; z: number } {
+  need(isObject(v), `${what} must be an {x, y, z} object`);
+  return { x: num(v.x, `${what}.x`), y: num(v.y, `${what}.y`), z: num(v.z, `${what}.z`) };
+}
+
+function decodeScenario(v: unknown): ScenarioInfo {
+  need(isObject(v), 'welcome.scenario must be an object');
+  need(isObject(v.params), 'welcome.scenario.params must be an object');
+  const params: Record<string, number> = {};
+  for (const [k, p] of Object.entries(v.params)) params[k] = num(p, `welcome.scenario.params.${k}`);
+  need(isObject(v.bounds), 'welcome.scenario.bounds must be {min, max}');
+  return {
+    name: str(v.name, 'welcome.scenario.name'),
+    description: str(v.description, 'welcome.scenario.description'),
+    params,
+    bounds: { min: vec3(v.bounds.min, 'welcome.scenario.bounds.min'), max: vec3(v.bounds.max, 'welcome.scenario.bounds.max') },
+  };
+}
+
+function decodeWelcome(v: unknown): WelcomeMessage {
+  need(isObject(v), 'welcome must carry an object');
+  const fmt = v.snapshotFormat;
+  need(isObject(fmt) && Array.isArray(fmt.positionSteps) && fmt.positionSteps.length === 3, 'welcome.snapshotFormat must be {positionSteps: [x, y, z], rotationBits}');
+  const positionSteps = fmt.positionSteps.map((s: unknown, i: number) => int(s, `welcome.snapshotFormat.positionSteps[${i}]`, 1)) as [number, number, number];
+  return {
+    type: 'welcome',
+    protocolVersion: int(v.protocolVersion, 'welcome.protocolVersion'),
+    playerId: int(v.playerId, 'welcome.playerId'),
+    roomId: str(v.roomId, 'welcome.roomId'),
+    tick: int(v.tick, 'welcome.tick'),
+    tickRateHz: num(v.tickRateHz, 'welcome.tickRateHz'),
+    snapshotRateHz: num(v.snapshotRateHz, 'welcome.snapshotRateHz'),
+    scenario: decodeScenario(v.scenario),
+    snapshotFormat: { positionSteps, rotationBits: int(fmt.rotationBits, 'welcome.snapshotFormat.rotationBits') },
+    staticBodies: unpackDescriptors(v.staticBodies, 'welcome.staticBodies'),
+    dynamicBodies: unpackDescriptors(v.dynamicBodies, 'welcome.dynamicBodies'),
+  };
+}
+
+function decodeEvent(v: unknown, i: number): SimEvent {
+  const what = `events[${i}]`;
+  need(isObject(v), `${what} must be an object`);
+  const type = v.type;
+  need(typeof type === 'string' && Object.prototype.hasOwnProperty.call(EVENT_FIELDS, type), `${what}.type ${JSON.stringify(String(type))} is not a known event`);
+  const out: Record<string, unknown> = { type, tick: int(v.tick, `${what}.tick`) };
+  for (const [field, kind] of Object.entries(EVENT_FIELDS[type as SimEvent['type']])) {
+    const value = v[field];
+    if (kind === 'number?' && value === undefined) continue;
+    if (kind === 'string') out[field] = str(value, `${what}.${field}`);
+    else out[field] = num(value, `${what}.${field}`);
+  }
+  return out as unknown as SimEvent;
+}
+
+function decode(value: unknown): ServerMessage {
+  need(Array.isArray(value) && value.length > 0, 'a server message must be an array [opcode, ...fields]');
+  const op = value[0];
+  const arity = (n: number, name: string): void => need(value.length === n, `${name} must have ${n - 1} field(s), got ${value.length - 1}`);
+  switch (op) {
+    case ServerOpcode.Welcome:
+      arity(2, 'welcome');
+      return decodeWelcome(value[1]);
+    case ServerOpcode.Pong:
+      arity(5, 'pong');
+      return {
+        type: 'pong',
+        clientTimeMs: num(value[1], 'pong.clientTimeMs'),
+        serverTick: int(value[2], 'pong.serverTick'),
+        serverTimeMs: num(value[3], 'pong.serverTimeMs'),
+        missedInputTicks: int(value[4], 'pong.missedInputTicks'),
+      };
+    case ServerOpcode.Snapshot: {
+      arity(3, 'snapshot');
+      need(value[1] instanceof Uint8Array, 'snapshot.bytes must be binary');
+      const descriptors = value[2] === null ? [] : unpackDescriptors(value[2], 'snapshot.descriptors');
+      return { type: 'snapshot', bytes: value[1], descriptors };
+    }
+    case ServerOpcode.Events: {
+      arity(2, 'events');
+      need(Array.isArray(value[1]), 'events must carry an array');
+      return { type: 'events', events: (value[1] as unknown[]).map(decodeEvent) };
+    }
+    case ServerOpcode.Error:
+      arity(3, 'error');
+      return { type: 'error', code: str(value[1], 'error.code') as ErrorCode, message: str(value[2], 'error.message') };
+    case ServerOpcode.Bye:
+      arity(3, 'bye');
+      return { type: 'bye', reason: str(value[1], 'bye.reason') as ByeReason, message: str(value[2], 'bye.message') };
+    default:
+      throw new DecodeError(`unknown server opcode ${String(op)}`);
+  }
+}
+
+/** Decodes one server frame; malformed data yields { ok: false, error } and never throws. */
+export function decodeServerMessage(data: unknown): ServerDecodeResult {
+  const bytes = toBytes(data);
+  if (bytes === null) return { ok: false, error: 'expected a binary frame' };
+  let value: unknown;
+  try {
+    value = unpackFrame(bytes);
+  } catch (e) {
+    return { ok: false, error: `not a msgpack value: ${(e as Error).message.slice(0, 120)}` };
+  }
+  try {
+    return { ok: true, message: decode(value) };
+  } catch (e) {
+    if (e instanceof DecodeError || e instanceof Error) return { ok: false, error: e.message };
+    return { ok: false, error: String(e) };
+  }
+}

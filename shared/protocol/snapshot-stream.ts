@@ -1,0 +1,210 @@
+// Per-client snapshot streams with bounded baseline histories. SnapshotEncoder (server side, one per client) remembers
+// the frames it sent, turns acks into the delta baseline and tracks which body descriptors the client already has;
+// SnapshotDecoder (client side) keeps the frames it decoded so later deltas find their baselines.
+import type { BodyDescriptor } from '../sim/types.ts';
+import { SNAPSHOT_HISTORY_SIZE } from './limits.ts';
+import type { SnapshotFormat } from './quantization.ts';
+import { decodeSnapshot, encodeSnapshot, readSnapshotHeader } from './snapshot-codec.ts';
+import type { QuantizedFrame } from './snapshot-frame.ts';
+
+/** A bounded map tick → entry that forgets the oldest insertion first. */
+export class TickHistory<T> {
+  readonly capacity: number;
+  private readonly entries = new Map<number, T>();
+
+  constructor(capacity: number) {
+    if (!Number.isInteger(capacity) || capacity < 1) throw new Error(`TickHistory: capacity must be a positive integer, got ${capacity}`);
+    this.capacity = capacity;
+  }
+
+  /** Stores an entry (replacing one with the same tick) and evicts the oldest beyond capacity. */
+  set(tick: number, entry: T): void {
+    this.entries.delete(tick);
+    this.entries.set(tick, entry);
+    while (this.entries.size > this.capacity) {
+      const oldest = this.entries.keys().next().value as number;
+      this.entries.delete(oldest);
+    }
+  }
+
+  /** The entry for a tick, if still held. */
+  get(tick: number): T | undefined {
+    return this.entries.get(tick);
+  }
+
+  /** Entries held. */
+  get size(): number {
+    return this.entries.size;
+  }
+
+  /** Forgets everything. */
+  clear(): void {
+    this.entries.clear();
+  }
+}
+
+/** One encoded snapshot for one client. */
+export interface EncodedSnapshot {
+  tick: number;
+  /** The bit-packed frame (docs/protocol.md, "Snapshot bit layout"). */
+  bytes: Uint8Array;
+  /** The acked frame this is a delta against; null for a full snapshot. */
+  baselineTick: number | null;
+  /** Descriptors of bodies in this snapshot the client is not known to have (spawns since its baseline). */
+  descriptors: BodyDescriptor[];
+}
+
+/** What an ack did. */
+export type AckOutcome = 'baseline' | 'older' | 'unknown';
+
+interface SentSnapshot {
+  frame: QuantizedFrame;
+  descriptorIds: number[];
+}
+
+/** Encoder statistics (for metrics). */
+export interface SnapshotEncoderStats {
+  full: number;
+  delta: number;
+  bytes: number;
+  acks: number;
+  unknownAcks: number;
+}
+
+/**
+ * The server's per-client snapshot state. Baseline rule: the newest acked frame still in the history (the last
+ * `historySize` snapshots sent to this client); with none, a full snapshot. A descriptor counts as delivered once a
+ * snapshot that carried it is acked (or after markDescriptorsKnown, for the welcome's bodies).
+ */
+export class SnapshotEncoder {
+  readonly format: SnapshotFormat;
+  private readonly sent: TickHistory<SentSnapshot>;
+  private ackedTick = -1;
+  private readonly known = new Set<number>();
+  private readonly counters: SnapshotEncoderStats = { full: 0, delta: 0, bytes: 0, acks: 0, unknownAcks: 0 };
+
+  constructor(format: SnapshotFormat, opts: { historySize?: number } = {}) {
+    this.format = format;
+    this.sent = new TickHistory(opts.historySize ?? SNAPSHOT_HISTORY_SIZE);
+  }
+
+  /** Records descriptors delivered reliably outside snapshots (the welcome's dynamic bodies). */
+  markDescriptorsKnown(bodyIds: Iterable<number>): void {
+    for (const id of bodyIds) this.known.add(id);
+  }
+
+  /** Whether the client is known to hold a body's descriptor. */
+  knowsDescriptor(bodyId: number): boolean {
+    return this.known.has(bodyId);
+  }
+
+  /** Applies a client's ack; acks of unsent or evicted ticks are ignored ('unknown'), older acks never move back. */
+  acknowledge(tick: number): AckOutcome {
+    const entry = this.sent.get(tick);
+    if (entry === undefined) {
+      this.counters.unknownAcks++;
+      return 'unknown';
+    }
+    this.counters.acks++;
+    for (const id of entry.descriptorIds) this.known.add(id);
+    if (tick > this.ackedTick) {
+      this.ackedTick = tick;
+      return 'baseline';
+    }
+    return 'older';
+  }
+
+  /** The tick the next delta will be based on, or null when the next snapshot will be full. */
+  get baselineTick(): number | null {
+    return this.ackedTick >= 0 && this.sent.get(this.ackedTick) !== undefined ? this.ackedTick : null;
+  }
+
+  /** Counters since creation. */
+  get stats(): Readonly<SnapshotEncoderStats> {
+    return this.counters;
+  }
+
+  /**
+   * Encodes a frame for this client and remembers it as a possible baseline. `describe(id)` returns a body's
+   * descriptor; a spawned body without one throws (a server bug, not a client's doing).
+   */
+  encode(frame: QuantizedFrame, describe: (bodyId: number) => BodyDescriptor | undefined): EncodedSnapshot {
+    const baseEntry = this.ackedTick >= 0 ? this.sent.get(this.ackedTick) : undefined;
+    const baseline = baseEntry !== undefined && baseEntry.frame.tick < frame.tick ? baseEntry.frame : null;
+    const bytes = encodeSnapshot(this.format, frame, baseline);
+    // Bodies gone from the world are forgotten, so a reused id gets its new descriptor.
+    if (this.known.size > 0) {
+      const present = new Set<number>();
+      for (let i = 0; i < frame.bodyIds.length; i++) present.add(frame.bodyIds[i]);
+      for (const id of this.known) if (!present.has(id)) this.known.delete(id);
+    }
+    const descriptors: BodyDescriptor[] = [];
+    const descriptorIds: number[] = [];
+    const baseIds = baseline?.bodyIds;
+    let j = 0;
+    for (let i = 0; i < frame.bodyIds.length; i++) {
+      const id = frame.bodyIds[i];
+      if (baseIds !== undefined) {
+        while (j < baseIds.length && baseIds[j] < id) j++;
+        if (j < baseIds.length && baseIds[j] === id) continue;
+      }
+      if (this.known.has(id)) continue;
+      const d = describe(id);
+      if (d === undefined) throw new Error(`SnapshotEncoder: no descriptor for spawned body ${id}`);
+      descriptors.push(d);
+      descriptorIds.push(id);
+    }
+    this.sent.set(frame.tick, { frame, descriptorIds });
+    if (baseline === null) this.counters.full++;
+    else this.counters.delta++;
+    this.counters.bytes += bytes.length;
+    return { tick: frame.tick, bytes, baselineTick: baseline === null ? null : baseline.tick, descriptors };
+  }
+
+  /** Forgets every sent frame and ack (the next snapshot is full); known descriptors stay known. */
+  reset(): void {
+    this.sent.clear();
+    this.ackedTick = -1;
+  }
+}
+
+/** One decoded snapshot. */
+export interface DecodedSnapshot {
+  frame: QuantizedFrame;
+  baselineTick: number | null;
+  sizeBytes: number;
+}
+
+/**
+ * The client's side: decodes snapshots against frames it decoded before and keeps the last `historySize` of them.
+ * Ack a snapshot only after decode() returned it.
+ */
+export class SnapshotDecoder {
+  readonly format: SnapshotFormat;
+  private readonly frames: TickHistory<QuantizedFrame>;
+  private newest: QuantizedFrame | null = null;
+
+  constructor(format: SnapshotFormat, opts: { historySize?: number } = {}) {
+    this.format = format;
+    this.frames = new TickHistory(opts.historySize ?? SNAPSHOT_HISTORY_SIZE);
+  }
+
+  /** Decodes bytes into the server's exact frame; throws a clear Error on a missing baseline or corrupt bytes. */
+  decode(bytes: Uint8Array): DecodedSnapshot {
+    const frame = decodeSnapshot(this.format, bytes, (tick) => this.frames.get(tick));
+    this.frames.set(frame.tick, frame);
+    if (this.newest === null || frame.tick > this.newest.tick) this.newest = frame;
+    const header = readSnapshotHeader(bytes);
+    return { frame, baselineTick: header.baselineTick, sizeBytes: bytes.length };
+  }
+
+  /** The decoded frame for a tick, if held. */
+  frame(tick: number): QuantizedFrame | undefined {
+    return this.frames.get(tick);
+  }
+
+  /** The newest decoded frame. */
+  latest(): QuantizedFrame | null {
+    return this.newest;
+  }
+}

@@ -1,0 +1,128 @@
+// Checks every client→server frame: size, msgpack well-formedness, opcode, arity, field types and ranges, finite
+// numbers, and each input command through the one validator (validateInputCommand). Never throws.
+import { validateInputCommand, type InputCommand } from '../sim/input.ts';
+import type { ClientMessage } from './client-messages.ts';
+import { toBytes, unpackFrame } from './codec.ts';
+import { MAX_CLIENT_MESSAGE_BYTES, MAX_CLIENT_TIME_MS, MAX_INPUT_COMMANDS_PER_MESSAGE, MAX_NAME_LENGTH, MAX_TICK, ROOM_ID_PATTERN } from './limits.ts';
+import { ClientOpcode, ErrorCode } from './opcodes.ts';
+
+/** A checked client message, or why it was refused (an ErrorCode and a sentence naming the field). */
+export type ClientDecodeResult =
+  | { ok: true; message: ClientMessage; /** Input commands the validator clamped into range. */ clampedCommands: number }
+  | { ok: false; code: ErrorCode; error: string };
+
+type Failure = { ok: false; code: ErrorCode; error: string };
+
+function bad(error: string, code: ErrorCode = ErrorCode.BadMessage): Failure {
+  return { ok: false, code, error };
+}
+
+function isTick(v: unknown): v is number {
+  return typeof v === 'number' && Number.isInteger(v) && v >= 0 && v <= MAX_TICK;
+}
+
+// Control characters (C0, DEL, C1) and the bidirectional overrides/isolates that can disguise a name.
+const FORBIDDEN_NAME_CHARS = /[\u0000-\u001f\u007f-\u009f\u202a-\u202e\u2066-\u2069]/;
+
+/** Checks a display name; returns the trimmed name or an error sentence. */
+export function checkPlayerName(raw: unknown): { ok: true; name: string } | { ok: false; error: string } {
+  if (typeof raw !== 'string') return { ok: false, error: `name must be a string, got ${typeOf(raw)}` };
+  const name = raw.trim();
+  if (name.length === 0) return { ok: false, error: 'name must not be empty' };
+  if (name.length > MAX_NAME_LENGTH) return { ok: false, error: `name must be at most ${MAX_NAME_LENGTH} characters, got ${name.length}` };
+  if (FORBIDDEN_NAME_CHARS.test(name)) return { ok: false, error: 'name must not contain control or direction-override characters' };
+  return { ok: true, name };
+}
+
+/** Checks a room id (null allowed: the default room). */
+export function checkRoomId(raw: unknown): { ok: true; room: string | null } | { ok: false; error: string } {
+  if (raw === null || raw === undefined) return { ok: true, room: null };
+  if (typeof raw !== 'string' || !ROOM_ID_PATTERN.test(raw)) return { ok: false, error: 'room must be null or 1-64 characters of A-Z a-z 0-9 _ -' };
+  return { ok: true, room: raw };
+}
+
+function typeOf(v: unknown): string {
+  if (v === null) return 'null';
+  if (Array.isArray(v)) return 'array';
+  if (v instanceof Uint8Array) return 'binary';
+  return typeof v;
+}
+
+function arity(fields: unknown[], n: number, name: string): Failure | null {
+  return fields.length === n ? null : bad(`${name} must have ${n - 1} field(s), got ${fields.length - 1}`);
+}
+
+function decodeInput(fields: unknown[]): ClientDecodeResult {
+  const wrong = arity(fields, 3, 'input');
+  if (wrong) return wrong;
+  const [, firstTick, list] = fields;
+  if (!isTick(firstTick)) return bad(`input.firstTick must be an integer tick in [0, ${MAX_TICK}], got ${String(firstTick)}`, ErrorCode.BadInput);
+  if (!Array.isArray(list) || list.length === 0 || list.length > MAX_INPUT_COMMANDS_PER_MESSAGE) {
+    return bad(`input.commands must be an array of 1..${MAX_INPUT_COMMANDS_PER_MESSAGE} commands`, ErrorCode.BadInput);
+  }
+  if (firstTick + list.length - 1 > MAX_TICK) return bad('input.commands run past the largest tick', ErrorCode.BadInput);
+  const commands: InputCommand[] = [];
+  let clamped = 0;
+  for (let i = 0; i < list.length; i++) {
+    const c = list[i];
+    if (!Array.isArray(c) || c.length !== 5) return bad(`input.commands[${i}] must be [moveX, moveZ, yaw, pitch, buttons]`, ErrorCode.BadInput);
+    const v = validateInputCommand({ moveX: c[0], moveZ: c[1], yaw: c[2], pitch: c[3], buttons: c[4] });
+    if (!v.ok) return bad(`input.commands[${i}] (tick ${firstTick + i}): ${v.error}`, ErrorCode.BadInput);
+    if (v.clamped) clamped++;
+    commands.push(v.command);
+  }
+  return { ok: true, message: { type: 'input', firstTick, commands }, clampedCommands: clamped };
+}
+
+/** Decodes and checks one client frame; every failure is a result, never an exception. */
+export function decodeClientMessage(data: unknown, maxBytes: number = MAX_CLIENT_MESSAGE_BYTES): ClientDecodeResult {
+  if (typeof data === 'string') return bad('text frames are not accepted: send binary msgpack', ErrorCode.Malformed);
+  const bytes = toBytes(data);
+  if (bytes === null) return bad(`expected binary data, got ${typeOf(data)}`, ErrorCode.Malformed);
+  if (bytes.length > maxBytes) return bad(`message of ${bytes.length} bytes exceeds the ${maxBytes}-byte limit`, ErrorCode.Oversize);
+  if (bytes.length === 0) return bad('empty message', ErrorCode.Malformed);
+  let value: unknown;
+  try {
+    value = unpackFrame(bytes);
+  } catch (e) {
+    return bad(`not a msgpack value: ${(e as Error).message.slice(0, 120)}`, ErrorCode.Malformed);
+  }
+  if (!Array.isArray(value) || value.length === 0) return bad(`message must be an array [opcode, ...fields], got ${typeOf(value)}`);
+  const op = value[0];
+  switch (op) {
+    case ClientOpcode.Hello: {
+      const wrong = arity(value, 4, 'hello');
+      if (wrong) return wrong;
+      const [, version, rawName, rawRoom] = value;
+      if (typeof version !== 'number' || !Number.isInteger(version) || version < 0 || version > 0xffff) return bad(`hello.version must be an integer, got ${String(version)}`);
+      const name = checkPlayerName(rawName);
+      if (!name.ok) return bad(`hello.${name.error}`);
+      if (rawRoom === undefined) return bad('hello.room must be a room id or null');
+      const room = checkRoomId(rawRoom);
+      if (!room.ok) return bad(`hello.${room.error}`);
+      return { ok: true, message: { type: 'hello', version, name: name.name, room: room.room }, clampedCommands: 0 };
+    }
+    case ClientOpcode.Input:
+      return decodeInput(value);
+    case ClientOpcode.SnapshotAck: {
+      const wrong = arity(value, 2, 'ack');
+      if (wrong) return wrong;
+      if (!isTick(value[1])) return bad(`ack.tick must be an integer tick in [0, ${MAX_TICK}], got ${String(value[1])}`);
+      return { ok: true, message: { type: 'ack', tick: value[1] }, clampedCommands: 0 };
+    }
+    case ClientOpcode.Ping: {
+      const wrong = arity(value, 2, 'ping');
+      if (wrong) return wrong;
+      const t = value[1];
+      if (typeof t !== 'number' || !Number.isFinite(t) || Math.abs(t) > MAX_CLIENT_TIME_MS) return bad(`ping.clientTimeMs must be a finite number within ±${MAX_CLIENT_TIME_MS}, got ${String(t)}`);
+      return { ok: true, message: { type: 'ping', clientTimeMs: t }, clampedCommands: 0 };
+    }
+    case ClientOpcode.Bye: {
+      const wrong = arity(value, 1, 'bye');
+      if (wrong) return wrong;
+      return { ok: true, message: { type: 'bye' }, clampedCommands: 0 };
+    }
+    default:
+      return bad(`unknown opcode ${typeof op === 'number' ? op : typeOf(op)}`);
+  }
+}
