@@ -1,5 +1,6 @@
 // BodyOptions handling: resolving motion, validating every tunable, and copying them into Jolt BodyCreationSettings.
 import type { JoltModule } from './jolt-backend.ts';
+import { checkNoCollideGroup } from './body-slots.ts';
 import { checkVec3 } from './shapes.ts';
 import type { BodyOptions, MotionKind, Vec3Like } from './types.ts';
 
@@ -65,6 +66,7 @@ export function validateBodyOptions(opts: BodyOptions, what: string): void {
   }
   if (opts.linearVelocity) checkVec3(opts.linearVelocity, what, 'linearVelocity');
   if (opts.angularVelocity) checkVec3(opts.angularVelocity, what, 'angularVelocity');
+  if (opts.noCollideGroup !== undefined) checkNoCollideGroup(opts.noCollideGroup, what);
   if (opts.motionQuality !== undefined && opts.motionQuality !== 'discrete' && opts.motionQuality !== 'linearCast') {
     throw new Error(`${what}: motionQuality must be 'discrete' or 'linearCast'`);
   }

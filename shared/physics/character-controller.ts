@@ -3,6 +3,7 @@
 // `position` is the character's feet; the capsule stands on it (height 2·(halfHeight + radius)).
 import type { BodyHandle } from './body-handle.ts';
 import type { JoltModule } from './jolt-backend.ts';
+import { checkNoCollideGroup } from './body-slots.ts';
 import { assertGroupBits, CollisionLayer, makeBroadPhaseFilter, makeObjectLayerFilter, packObjectLayer } from './layers.ts';
 import type { PhysicsWorld } from './physics-world.ts';
 import { checkVec3 } from './shapes.ts';
@@ -36,6 +37,10 @@ export interface CharacterOptions {
   innerBody?: boolean;
   userData?: unknown;
   name?: string;
+  /** The inner body's no-collide group: bodies sharing it (e.g. this player's bullets) never touch the capsule. */
+  noCollideGroup?: number;
+  /** @internal Checkpoint restore: recreate the inner body under this stable id and Jolt BodyID. */
+  restoreIds?: { id: number; joltId: number };
 }
 
 const GROUND_STATES: Record<number, GroundState> = {};
@@ -80,6 +85,8 @@ export class CharacterController {
     const stepUp = finiteIn(opts.stepUpHeight ?? 0.4, 0, 10, what, 'stepUpHeight');
     const stick = finiteIn(opts.stickToFloorDistance ?? 0.5, 0, 10, what, 'stickToFloorDistance');
     const mass = positive(opts.massKg ?? 70, what, 'massKg');
+    if (opts.noCollideGroup !== undefined) checkNoCollideGroup(opts.noCollideGroup, what);
+    if (opts.restoreIds && world.getBody(opts.restoreIds.id)) throw new Error(`${what}: stable id ${opts.restoreIds.id} is already in use`);
     world.ensureRoom(16 * 1024, what);
 
     const centreY = this.halfHeight + this.radius;
@@ -108,6 +115,8 @@ export class CharacterController {
     J.destroy(up);
     J.destroy(plane);
     const pos = new J.RVec3(opts.position.x, opts.position.y, opts.position.z); // copied, freed below
+    // Jolt picks the inner body's BodyID itself: steer it to the deterministic one (see body-slots.ts).
+    const innerJoltId = opts.innerBody !== false ? world.slots.prepareJoltChosen(opts.restoreIds?.joltId) : 0;
     this.character = new J.CharacterVirtual(settings, pos, identity, world.system); // owned here; destroyed in destroy()
     this.character.AddRef(); // keep Jolt's ref-counting from ever freeing it behind our back
     J.destroy(pos);
@@ -128,7 +137,9 @@ export class CharacterController {
 
     if (opts.innerBody !== false) {
       const innerId = this.character.GetInnerBodyID();
+      world.slots.confirmJoltChosen(innerJoltId, innerId.GetIndexAndSequenceNumber());
       const inner = world.system.GetBodyLockInterfaceNoLock().TryGetBody(innerId);
+      if (opts.noCollideGroup !== undefined) world.slots.setNoCollideGroup(inner, opts.noCollideGroup);
       this.body = world.track(inner, {
         motion: 'kinematic',
         layer: this.layer,
@@ -137,7 +148,7 @@ export class CharacterController {
         role: 'character',
         shape: { kind: 'capsule', halfHeight: this.halfHeight, radius: this.radius },
         opts: { userData: opts.userData, name: opts.name },
-      });
+      }, opts.restoreIds?.id);
     }
     this.disposer = () => this.destroy();
     world.disposers.add(this.disposer);

@@ -7,6 +7,7 @@ import { applyBodyOptions, flattenPoints, intOption, resolveMotion, validateBody
 import { pointLink } from './constraints.ts';
 import { RayQueries, type RayHit } from './queries.ts';
 import { SensorHub, type SensorEvent } from './sensors.ts';
+import { BodySlots } from './body-slots.ts';
 import { buildShape, checkQuat, checkVec3, estimateShapeBytes, STATIC_ONLY_KINDS, type JoltShape, type ShapeSpec } from './shapes.ts';
 import { IDENTITY_QUAT, type BodyOptions, type MotionKind, type QuatLike, type Vec3Like } from './types.ts';
 
@@ -43,6 +44,8 @@ export class PhysicsWorld {
   readonly filters: LayerFilters;
   readonly maxBodies: number;
   readonly minFreeHeapBytes: number;
+  /** @internal Deterministic Jolt BodyID allocation (checkpoints save and restore it). */
+  readonly slots: BodySlots;
   private readonly joltInterface: InstanceType<J['JoltInterface']>;
   private readonly records = new Map<number, BodyHandle>();
   private readonly byJoltId = new Map<number, BodyHandle>();
@@ -77,6 +80,7 @@ export class PhysicsWorld {
     J.destroy(settings);
     this.system = this.joltInterface.GetPhysicsSystem();
     this.bodyInterface = this.system.GetBodyInterface();
+    this.slots = new BodySlots(J, this.bodyInterface, this.maxBodies); // owned here; disposed in destroy()
     this.sensors = new SensorHub(J, this.system, {
       stableIdOf: (joltId) => this.byJoltId.get(joltId)?.id,
       isSensorJoltId: (joltId) => this.sensorJoltIds.has(joltId),
@@ -175,9 +179,13 @@ export class PhysicsWorld {
     return this.addShape({ kind: 'compound', parts }, pos, rot, opts);
   }
 
-  /** Builds any described shape into a body: the generic factory behind the named ones. */
-  addShape(spec: ShapeSpec, pos: Vec3Like, rot: QuatLike | null = null, opts: BodyOptions = {}): BodyHandle {
+  /**
+   * Builds any described shape into a body: the generic factory behind the named ones. `at` (checkpoint restore
+   * only) recreates a body under a given stable id and Jolt BodyID.
+   */
+  addShape(spec: ShapeSpec, pos: Vec3Like, rot: QuatLike | null = null, opts: BodyOptions = {}, at?: { id: number; joltId: number }): BodyHandle {
     this.live();
+    if (at && this.records.has(at.id)) throw new Error(`addShape: stable id ${at.id} is already in use`);
     const what = `${spec?.kind ?? 'shape'}${opts.name ? ` "${opts.name}"` : ''}`;
     const motion = resolveMotion(opts);
     if (spec && STATIC_ONLY_KINDS.has(spec.kind) && motion === 'dynamic') {
@@ -191,7 +199,7 @@ export class PhysicsWorld {
     this.ensureRoom(estimateShapeBytes(spec) + 2048, what);
     const shape = buildShape(this.jolt, spec, what);
     try {
-      return this.createBody(shape, spec, pos, rot ?? IDENTITY_QUAT, motion, layer, mask, opts, what);
+      return this.createBody(shape, spec, pos, rot ?? IDENTITY_QUAT, motion, layer, mask, opts, what, at);
     } finally {
       shape.Release(); // the body holds its own reference now (or the build failed and this frees the shape)
     }
@@ -225,7 +233,7 @@ export class PhysicsWorld {
     return this.jolt.JoltInterface.prototype.sGetFreeMemory();
   }
 
-  private createBody(shape: JoltShape, spec: ShapeSpec, pos: Vec3Like, rot: QuatLike, motion: MotionKind, layer: number, mask: number, opts: BodyOptions, what: string): BodyHandle {
+  private createBody(shape: JoltShape, spec: ShapeSpec, pos: Vec3Like, rot: QuatLike, motion: MotionKind, layer: number, mask: number, opts: BodyOptions, what: string, at?: { id: number; joltId: number }): BodyHandle {
     const J = this.jolt;
     const rPos = new J.RVec3(pos.x, pos.y, pos.z); // copied into the settings, freed below
     const qRot = new J.Quat(rot.x, rot.y, rot.z, rot.w); // copied into the settings, freed below
@@ -236,19 +244,23 @@ export class PhysicsWorld {
     J.destroy(qRot);
     const isSensor = opts.isSensor === true || opts.sensor !== undefined;
     applyBodyOptions(J, settings, opts, motion, isSensor);
-    const body = this.bodyInterface.CreateBody(settings);
-    J.destroy(settings);
-    if (J.getPointer(body) === 0) {
-      throw new Error(`${what}: Jolt refused the body (the world holds ${this.records.size} of maxBodies ${this.maxBodies})`);
+    if (opts.noCollideGroup !== undefined) this.slots.applyNoCollideGroup(settings, opts.noCollideGroup);
+    let body: JoltBody;
+    try {
+      body = this.slots.create(settings, at?.joltId); // at the deterministic BodyID (see body-slots.ts)
+    } catch (err) {
+      throw new Error(`${what}: ${(err as Error).message} (the world holds ${this.records.size} of maxBodies ${this.maxBodies})`);
+    } finally {
+      J.destroy(settings);
     }
     this.bodyInterface.AddBody(body.GetID(), motion === 'static' ? J.EActivation_DontActivate : J.EActivation_Activate);
-    const handle = this.track(body, { motion, layer, mask, isSensor, role: 'body', shape: spec, opts });
+    const handle = this.track(body, { motion, layer, mask, isSensor, role: 'body', shape: spec, opts }, at?.id);
     if (isSensor) this.sensors.ensureInstalled();
     return handle;
   }
 
   /** @internal Registers a Jolt body (also character inner bodies) under the next stable id. */
-  track(body: JoltBody, info: { motion: MotionKind; layer: number; mask: number; isSensor: boolean; role: BodyRole; shape: ShapeSpec | undefined; opts: BodyOptions }, id = this.nextBodyId++): BodyHandle {
+  track(body: JoltBody, info: { motion: MotionKind; layer: number; mask: number; isSensor: boolean; role: BodyRole; shape: ShapeSpec | undefined; opts: BodyOptions }, id: number = this.nextBodyId++): BodyHandle {
     const joltId = body.GetID().GetIndexAndSequenceNumber();
     const handle = new BodyHandle({
       J: this.jolt,
@@ -277,6 +289,7 @@ export class PhysicsWorld {
   /** @internal Forgets a body without touching Jolt (the character controller removes its own inner body). */
   untrack(handle: BodyHandle): void {
     this.sensors.forgetBody(handle.joltId);
+    this.slots.release(handle.joltId);
     this.records.delete(handle.id);
     this.byJoltId.delete(handle.joltId);
     this.sensorJoltIds.delete(handle.joltId);
@@ -320,6 +333,7 @@ export class PhysicsWorld {
     this.disposers.clear();
     this.clear();
     this.destroyed = true;
+    this.slots.dispose();
     this.jolt.destroy(this.joltInterface);
     this.sensors.dispose();
     this.stateScratch = new Float32Array(0);

@@ -66,6 +66,8 @@ export interface BodyOptions<Other = unknown> {
   userData?: unknown;
   /** A human-readable name (debugging, error messages). */
   name?: string;
+  /** Bodies sharing this group id (an integer in [0, 0xfffffffe]) never collide with each other (a shooter, its bullets). */
+  noCollideGroup?: number;
 }
 
 export const IDENTITY_QUAT: QuatLike = Object.freeze({ x: 0, y: 0, z: 0, w: 1 });
