@@ -1,0 +1,173 @@
+// What the state hash covers, as data: a StateDump of a simulation (bodies' raw float bits in id order, characters,
+// players, PRNG, bullets, scenario state), its 64-bit hash, and the first difference between two dumps.
+import { BODY_STATE_STRIDE } from '../physics/index.ts';
+import type { Bullet } from './bullets.ts';
+import type { InputCommand } from './input.ts';
+import type { SimCore } from './sim-core.ts';
+import { Hasher64 } from './state-hash.ts';
+
+const GROUND_CODES = { ground: 0, steep: 1, air: 2, unsupported: 3 } as const;
+
+/** One player's hashed state. */
+export interface PlayerDump {
+  playerId: number;
+  name: string;
+  joinIndex: number;
+  bodyId: number;
+  input: InputCommand;
+  nextFireTick: number;
+  /** Feet position (float32 values), velocity and pending jump speed (float64 values). */
+  position: [number, number, number];
+  velocity: [number, number, number];
+  groundState: number;
+  pendingJumpSpeed: number;
+}
+
+/** Everything the state hash covers, copied out of a simulation after a tick. */
+export interface StateDump {
+  tick: number;
+  prng: number[];
+  nextBodyId: number;
+  joinCount: number;
+  /** Body ids ascending, 13 float32 per body (position, rotation, linear and angular velocity), BodyFlag bits. */
+  ids: Uint32Array;
+  states: Float32Array;
+  flags: Uint8Array;
+  players: PlayerDump[];
+  bullets: Bullet[];
+  scenarioState: number[];
+  /** Sensor transitions carried into the next tick, as (kind 0 exit / 1 enter, sensor id, other id) triples. */
+  carriedSensor: number[];
+  /** Open sensor overlaps as (sensor id, other id, count) triples. */
+  overlaps: number[];
+}
+
+/** Copies the hashed state out of a simulation core. */
+export function dumpState(core: SimCore): StateDump {
+  const b = core.world.readBodyStates();
+  const rows = core.world.sensorHub.exportOverlaps();
+  const overlaps: number[] = [];
+  for (let i = 0; i + 4 < rows.length; i += 5) overlaps.push(rows[i + 2], rows[i + 3], rows[i + 4]);
+  return {
+    tick: core.tick,
+    prng: core.rng.getState(),
+    nextBodyId: core.world.nextId,
+    joinCount: core.players.joinCount,
+    ids: b.ids.slice(),
+    states: b.states.slice(),
+    flags: b.flags.slice(),
+    players: core.players.inOrder().map((p) => {
+      const c = p.controller;
+      const pos = c.position;
+      return {
+        playerId: p.playerId,
+        name: p.name,
+        joinIndex: p.joinIndex,
+        bodyId: p.bodyId,
+        input: { ...p.input },
+        nextFireTick: p.nextFireTick,
+        position: [pos.x, pos.y, pos.z],
+        velocity: [c.velocity.x, c.velocity.y, c.velocity.z],
+        groundState: GROUND_CODES[c.groundState],
+        pendingJumpSpeed: c.pendingJumpSpeed,
+      };
+    }),
+    bullets: core.bullets.snapshot(),
+    scenarioState: core.instance.saveState ? core.instance.saveState().slice() : [],
+    carriedSensor: core.carriedSensor.flatMap((e) => [e.kind === 'enter' ? 1 : 0, e.sensorId, e.otherId]),
+    overlaps,
+  };
+}
+
+function hashPlayer(h: Hasher64, p: PlayerDump): void {
+  h.word(p.playerId).word(p.joinIndex).word(p.bodyId).string(p.name);
+  const i = p.input;
+  h.word(i.moveX).word(i.moveZ).word(i.yaw).word(i.pitch).word(i.buttons).word(p.nextFireTick);
+  h.f32Bits(p.position[0]).f32Bits(p.position[1]).f32Bits(p.position[2]);
+  h.f64Bits(p.velocity[0]).f64Bits(p.velocity[1]).f64Bits(p.velocity[2]);
+  h.word(p.groundState).f64Bits(p.pendingJumpSpeed);
+}
+
+/** The state hash of a dump: 16 lowercase hex characters (see docs/simulation.md for the exact word order). */
+export function hashDump(d: StateDump): string {
+  const h = new Hasher64();
+  h.word(d.tick);
+  for (const w of d.prng) h.word(w);
+  h.word(d.nextBodyId).word(d.joinCount);
+  const n = d.ids.length;
+  h.word(n).words(d.ids);
+  h.words(new Uint32Array(d.states.buffer, d.states.byteOffset, n * BODY_STATE_STRIDE));
+  for (let i = 0; i < n; i += 4) h.word(d.flags[i] | (d.flags[i + 1] << 8) | (d.flags[i + 2] << 16) | (d.flags[i + 3] << 24));
+  h.word(d.players.length);
+  for (const p of d.players) hashPlayer(h, p);
+  h.word(d.bullets.length);
+  for (const b of d.bullets) h.word(b.bodyId).word(b.ownerId).word(b.expireTick);
+  h.word(d.scenarioState.length);
+  for (const v of d.scenarioState) h.f64Bits(v);
+  h.word(d.carriedSensor.length);
+  for (const v of d.carriedSensor) h.word(v);
+  h.word(d.overlaps.length);
+  for (const v of d.overlaps) h.word(v);
+  return h.hex();
+}
+
+/** Where two dumps first differ: null when identical. Bodies are compared in id order, field by field. */
+export interface Divergence {
+  /** Which part differs first, in hash order. */
+  part: 'tick' | 'prng' | 'ids' | 'body' | 'players' | 'bullets' | 'scenario' | 'sensors';
+  /** The first differing body (part 'body' or 'ids'). */
+  bodyId?: number;
+  /** The first differing player (part 'players'). */
+  playerId?: number;
+  /** A readable description. */
+  detail: string;
+}
+
+const FIELDS = ['position', 'rotation', 'linearVelocity', 'angularVelocity'] as const;
+const FIELD_OF = [0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 3, 3, 3];
+
+function sameNumbers(a: readonly number[], b: readonly number[]): boolean {
+  return a.length === b.length && a.every((v, i) => Object.is(v, b[i]));
+}
+
+/** Compares two dumps and names the first difference (first differing body id for body state). */
+export function firstDivergence(a: StateDump, b: StateDump): Divergence | null {
+  if (a.tick !== b.tick) return { part: 'tick', detail: `tick ${a.tick} vs ${b.tick}` };
+  if (!sameNumbers(a.prng, b.prng) || a.nextBodyId !== b.nextBodyId || a.joinCount !== b.joinCount) {
+    return { part: 'prng', detail: `PRNG/id counters differ (next body id ${a.nextBodyId} vs ${b.nextBodyId}, joins ${a.joinCount} vs ${b.joinCount})` };
+  }
+  const ua = new Uint32Array(a.states.buffer, a.states.byteOffset, a.ids.length * BODY_STATE_STRIDE);
+  const ub = new Uint32Array(b.states.buffer, b.states.byteOffset, b.ids.length * BODY_STATE_STRIDE);
+  let i = 0;
+  let j = 0;
+  while (i < a.ids.length || j < b.ids.length) {
+    const ia = i < a.ids.length ? a.ids[i] : Infinity;
+    const ib = j < b.ids.length ? b.ids[j] : Infinity;
+    if (ia !== ib) {
+      const id = Math.min(ia, ib);
+      return { part: 'ids', bodyId: id, detail: `body ${id} exists only in the ${ia < ib ? 'first' : 'second'} state` };
+    }
+    for (let k = 0; k < BODY_STATE_STRIDE; k++) {
+      if (ua[i * BODY_STATE_STRIDE + k] !== ub[j * BODY_STATE_STRIDE + k]) {
+        const field = FIELDS[FIELD_OF[k]];
+        return { part: 'body', bodyId: ia, detail: `body ${ia} ${field} differs: ${a.states[i * BODY_STATE_STRIDE + k]} vs ${b.states[j * BODY_STATE_STRIDE + k]}` };
+      }
+    }
+    if (a.flags[i] !== b.flags[j]) return { part: 'body', bodyId: ia, detail: `body ${ia} flags differ (${a.flags[i]} vs ${b.flags[j]}: sleeping/active)` };
+    i++;
+    j++;
+  }
+  const n = Math.max(a.players.length, b.players.length);
+  for (let k = 0; k < n; k++) {
+    const pa = a.players[k];
+    const pb = b.players[k];
+    if (!pa || !pb || JSON.stringify(pa) !== JSON.stringify(pb) || !sameNumbers(pa.velocity, pb.velocity)) {
+      const id = pa && pb ? pa.playerId : (pa ?? pb)!.playerId;
+      return { part: 'players', playerId: id, detail: `player ${id} differs` };
+    }
+  }
+  if (JSON.stringify(a.bullets) !== JSON.stringify(b.bullets)) return { part: 'bullets', detail: 'bullet lists differ' };
+  if (!sameNumbers(a.scenarioState, b.scenarioState)) return { part: 'scenario', detail: 'scenario state differs' };
+  if (!sameNumbers(a.carriedSensor, b.carriedSensor) || !sameNumbers(a.overlaps, b.overlaps)) return { part: 'sensors', detail: 'sensor overlaps differ' };
+  return null;
+}

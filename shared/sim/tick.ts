@@ -1,0 +1,129 @@
+// One 60 Hz tick, in the documented order (docs/simulation.md): leaves → joins → commands (walk, jump, fire) →
+// characters move → physics step → scenario onTick → bullet expiry and bounds → sensor events → onEvents.
+import { BODY_STATE_STRIDE, BodyFlag, IDENTITY_QUAT, type Vec3Like } from '../physics/index.ts';
+import { makeRecord, playerColor } from './body-registry.ts';
+import { BULLET_SHAPE, bulletOptions, muzzlePosition } from './bullets.ts';
+import { applyCommand, CHARACTER_SHAPE, createCharacter, newPlayer, type Player } from './players.ts';
+import { assertRegistryInSync, createBody, destroyBody, sensorSimEvents, type SimCore } from './sim-core.ts';
+import { validateTickRecord } from './tick-record.ts';
+import { TICK_DT_SECONDS, type PlayerCommand, type PlayerJoin, type SimEvent, type TickInputRecord } from './types.ts';
+
+function checkSpawnPoint(core: SimCore, joinIndex: number): Vec3Like {
+  const p = core.instance.spawnPoint(joinIndex);
+  if (!p || !Number.isFinite(p.x) || !Number.isFinite(p.y) || !Number.isFinite(p.z)) {
+    throw new Error(`scenario ${core.def.name}: spawnPoint(${joinIndex}) must return finite {x, y, z}`);
+  }
+  return { x: p.x, y: p.y, z: p.z };
+}
+
+function join(core: SimCore, j: PlayerJoin, tick: number): void {
+  const joinIndex = core.players.joinCount;
+  const feet = checkSpawnPoint(core, joinIndex);
+  const controller = createCharacter(core.world, j.playerId, joinIndex, feet);
+  core.players.joinCount++;
+  const player = newPlayer(j.playerId, j.name, joinIndex, controller);
+  core.players.add(player);
+  core.registry.add(makeRecord('character', controller.body!, CHARACTER_SHAPE, feet, IDENTITY_QUAT, { name: j.name }, { playerId: j.playerId, color: playerColor(joinIndex) }));
+  core.tickEvents.push({ type: 'playerJoined', tick, playerId: j.playerId, name: j.name, bodyId: player.bodyId });
+}
+
+function leave(core: SimCore, playerId: number, tick: number): void {
+  const p = core.players.remove(playerId);
+  core.registry.delete(p.bodyId);
+  core.departed.set(p.bodyId, playerId);
+  core.tickEvents.push({ type: 'playerLeft', tick, playerId });
+}
+
+function fire(core: SimCore, p: Player, aim: Vec3Like, tick: number): void {
+  const r = core.rules;
+  const pos = muzzlePosition(p.controller.position, aim);
+  const opts = bulletOptions(aim, r.bulletSpeedMetresPerSecond, r.bulletsHitPlayers, p.joinIndex, p.playerId);
+  const rec = createBody(core, 'bullet', BULLET_SHAPE, pos, null, opts);
+  core.bullets.add({ bodyId: rec.id, ownerId: p.playerId, expireTick: tick + r.bulletLifetimeTicks - 1 });
+  core.tickEvents.push({ type: 'bodySpawned', tick, bodyId: rec.id });
+}
+
+function outside(x: number, y: number, z: number, min: Vec3Like, max: Vec3Like): boolean {
+  // NaN compares false everywhere, so a body whose state blew up counts as outside.
+  return !(x >= min.x && x <= max.x && y >= min.y && y <= max.y && z >= min.z && z <= max.z);
+}
+
+/** Removes expired bullets and bodies that left the bounds; characters that left are put back at their spawn point. */
+function expireAndBound(core: SimCore, tick: number): void {
+  for (const b of core.bullets.takeExpired(tick)) {
+    if (!core.registry.has(b.bodyId)) continue;
+    destroyBody(core, b.bodyId);
+    core.tickEvents.push({ type: 'bodyRemoved', tick, bodyId: b.bodyId });
+  }
+  const { min, max } = core.def.bounds;
+  const s = core.world.readBodyStates();
+  const gone: number[] = [];
+  for (let i = 0; i < s.count; i++) {
+    if ((s.flags[i] & BodyFlag.Static) !== 0) continue;
+    const o = i * BODY_STATE_STRIDE;
+    if (outside(s.states[o], s.states[o + 1], s.states[o + 2], min, max)) gone.push(s.ids[i]);
+  }
+  for (const id of gone) {
+    const rec = core.registry.get(id)!;
+    if (rec.kind === 'character') {
+      const player = core.players.get(rec.descriptor.playerId!)!;
+      player.controller.setPosition(checkSpawnPoint(core, player.joinIndex));
+      player.controller.velocity.x = 0;
+      player.controller.velocity.y = 0;
+      player.controller.velocity.z = 0;
+      continue;
+    }
+    if (rec.kind === 'bullet') core.bullets.forget(id);
+    destroyBody(core, id);
+    core.tickEvents.push({ type: 'bodyRemoved', tick, bodyId: id });
+  }
+}
+
+function hook(core: SimCore, name: string, run: () => void): void {
+  try {
+    run();
+  } catch (err) {
+    throw new Error(`scenario ${core.def.name}: ${name} failed at tick ${core.currentTick}: ${(err as Error).message}`, { cause: err });
+  }
+  assertRegistryInSync(core, name);
+}
+
+/** Runs one tick for `raw` (validated first: a bad record throws and changes nothing). Returns the tick's events. */
+export function runTick(core: SimCore, raw: unknown): SimEvent[] {
+  if (core.failure) throw new Error(`the simulation failed at tick ${core.tick} and must be restored from a checkpoint: ${core.failure.message}`);
+  const rec: TickInputRecord = validateTickRecord(raw, core.tick, (id) => core.players.has(id));
+  const tick = core.tick;
+  core.currentTick = tick;
+  core.tickEvents = [];
+  core.departed.clear();
+  core.phase = 'tick';
+  try {
+    for (const id of rec.leaves) leave(core, id, tick);
+    for (const j of rec.joins) join(core, j, tick);
+    const given = new Map(rec.commands.map((c) => [c.playerId, c.input]));
+    const applied: PlayerCommand[] = [];
+    for (const p of core.players.inOrder()) {
+      const cmd = given.get(p.playerId) ?? p.input;
+      applied.push({ playerId: p.playerId, input: cmd });
+      const aim = applyCommand(p, cmd, core.rules, tick);
+      if (aim) fire(core, p, aim, tick);
+    }
+    core.tickInputs = applied;
+    for (const p of core.players.inOrder()) p.controller.move(TICK_DT_SECONDS);
+    const stepped = core.world.stepFixed();
+    if (core.instance.onTick) hook(core, 'onTick', () => core.instance.onTick!(core.ctx));
+    expireAndBound(core, tick);
+    const raw = core.carriedSensor.concat(stepped, core.world.sensorHub.drain());
+    const sensorEvents = sensorSimEvents(core, tick, raw);
+    core.tickEvents.push(...sensorEvents);
+    if (core.instance.onEvents) hook(core, 'onEvents', () => core.instance.onEvents!(core.ctx, sensorEvents));
+    core.carriedSensor = core.world.sensorHub.drain();
+  } catch (err) {
+    core.failure = err as Error;
+    core.phase = 'idle';
+    throw err;
+  }
+  core.tick = tick + 1;
+  core.phase = 'idle';
+  return core.tickEvents;
+}
