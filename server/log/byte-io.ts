@@ -17,13 +17,13 @@ export class PayloadError extends Error {
 /** Appends values to a growable byte buffer. */
 export class ByteWriter {
   private buf: Uint8Array;
-  private view: DataView;
+  private dv: DataView;
   /** Bytes written so far. */
   length = 0;
 
   constructor(initialSizeBytes = 256) {
     this.buf = new Uint8Array(initialSizeBytes);
-    this.view = new DataView(this.buf.buffer);
+    this.dv = new DataView(this.buf.buffer);
   }
 
   private reserve(n: number): void {
@@ -31,7 +31,7 @@ export class ByteWriter {
     const grown = new Uint8Array(Math.max(this.buf.length * 2, this.length + n));
     grown.set(this.buf.subarray(0, this.length));
     this.buf = grown;
-    this.view = new DataView(grown.buffer);
+    this.dv = new DataView(grown.buffer);
   }
 
   /** One unsigned byte. */
@@ -43,35 +43,35 @@ export class ByteWriter {
   /** Signed 8-bit. */
   i8(value: number): void {
     this.reserve(1);
-    this.view.setInt8(this.length, value);
+    this.dv.setInt8(this.length, value);
     this.length += 1;
   }
 
   /** Unsigned 16-bit little-endian. */
   u16(value: number): void {
     this.reserve(2);
-    this.view.setUint16(this.length, value, true);
+    this.dv.setUint16(this.length, value, true);
     this.length += 2;
   }
 
   /** Signed 16-bit little-endian. */
   i16(value: number): void {
     this.reserve(2);
-    this.view.setInt16(this.length, value, true);
+    this.dv.setInt16(this.length, value, true);
     this.length += 2;
   }
 
   /** Unsigned 32-bit little-endian. */
   u32(value: number): void {
     this.reserve(4);
-    this.view.setUint32(this.length, value >>> 0, true);
+    this.dv.setUint32(this.length, value >>> 0, true);
     this.length += 4;
   }
 
   /** IEEE-754 double, little-endian (exact bits). */
   f64(value: number): void {
     this.reserve(8);
-    this.view.setFloat64(this.length, value, true);
+    this.dv.setFloat64(this.length, value, true);
     this.length += 8;
   }
 
@@ -80,6 +80,14 @@ export class ByteWriter {
     if (!Number.isSafeInteger(value) || value < 0) throw new RangeError(`varint must be a non-negative safe integer, got ${value}`);
     this.reserve(MAX_VARINT_BYTES);
     let v = value;
+    if (v < 0x80000000) {
+      while (v >= 0x80) {
+        this.buf[this.length++] = (v & 0x7f) | 0x80;
+        v >>>= 7;
+      }
+      this.buf[this.length++] = v;
+      return;
+    }
     while (v >= 0x80) {
       this.buf[this.length++] = (v % 0x80) | 0x80;
       v = Math.floor(v / 0x80);
@@ -101,23 +109,37 @@ export class ByteWriter {
     this.bytes(b);
   }
 
+  /** The bytes written so far (a view into the internal buffer: valid until the next write or reset). */
+  view(): Uint8Array {
+    return this.buf.subarray(0, this.length);
+  }
+
+  /** Forgets the bytes written (keeps the buffer, so a reused writer allocates nothing). */
+  reset(): void {
+    this.length = 0;
+  }
+
+  /** Buffer capacity in bytes. */
+  get capacityBytes(): number {
+    return this.buf.length;
+  }
+
   /** A copy of the bytes written. */
   finish(): Uint8Array {
     return this.buf.slice(0, this.length);
   }
 }
 
-/** Reads values from bytes[start, end); every read past `end` throws PayloadError. */
+/** Reads values from bytes[start, end); every read past `end` throws PayloadError. Allocates nothing per read. */
 export class ByteReader {
   private readonly buf: Uint8Array;
-  private readonly view: DataView;
   private readonly end: number;
+  private dv: DataView | null = null;
   /** Next byte to read. */
   pos: number;
 
   constructor(bytes: Uint8Array, start = 0, end = bytes.length) {
     this.buf = bytes;
-    this.view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
     this.pos = start;
     this.end = end;
   }
@@ -140,37 +162,36 @@ export class ByteReader {
   /** Signed 8-bit. */
   i8(what = 'i8'): number {
     this.need(1, what);
-    return this.view.getInt8(this.pos++);
+    return (this.buf[this.pos++] << 24) >> 24;
   }
 
   /** Unsigned 16-bit little-endian. */
   u16(what = 'u16'): number {
     this.need(2, what);
-    const v = this.view.getUint16(this.pos, true);
+    const v = this.buf[this.pos] | (this.buf[this.pos + 1] << 8);
     this.pos += 2;
     return v;
   }
 
   /** Signed 16-bit little-endian. */
   i16(what = 'i16'): number {
-    this.need(2, what);
-    const v = this.view.getInt16(this.pos, true);
-    this.pos += 2;
-    return v;
+    return (this.u16(what) << 16) >> 16;
   }
 
   /** Unsigned 32-bit little-endian. */
   u32(what = 'u32'): number {
     this.need(4, what);
-    const v = this.view.getUint32(this.pos, true);
+    const b = this.buf;
+    const p = this.pos;
     this.pos += 4;
-    return v;
+    return (b[p] | (b[p + 1] << 8) | (b[p + 2] << 16) | (b[p + 3] << 24)) >>> 0;
   }
 
   /** IEEE-754 double, little-endian. */
   f64(what = 'f64'): number {
     this.need(8, what);
-    const v = this.view.getFloat64(this.pos, true);
+    this.dv ??= new DataView(this.buf.buffer, this.buf.byteOffset, this.buf.byteLength);
+    const v = this.dv.getFloat64(this.pos, true);
     this.pos += 8;
     return v;
   }

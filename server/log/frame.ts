@@ -1,7 +1,8 @@
 // Record framing of the input log: type byte, payload length (LEB128, ≤ 4 bytes), a header check byte, the payload,
 // and a CRC-32. Encodes frames and classifies the bytes at an offset as a whole frame, "need more", or corrupt.
+import { ByteWriter } from './byte-io.ts';
 import { crc32 } from './crc32.ts';
-import { MAX_LENGTH_VARINT_BYTES, MAX_PAYLOAD_BYTES, RECORD_TYPE_NAMES, type RecordTypeCode } from './log-format.ts';
+import { MAX_FRAME_OVERHEAD_BYTES, MAX_LENGTH_VARINT_BYTES, MAX_PAYLOAD_BYTES, RECORD_TYPE_NAMES, type RecordTypeCode } from './log-format.ts';
 
 /** What sits at an offset: a whole valid frame, too few bytes to tell, or a damaged frame. */
 export type FrameScan =
@@ -9,25 +10,28 @@ export type FrameScan =
   | { kind: 'need'; totalBytes: number }
   | { kind: 'bad'; reason: string };
 
-/** Wraps a payload in a frame: type, length, header check, payload, CRC-32 (LE) over everything before it. */
-export function encodeFrame(type: RecordTypeCode, payload: Uint8Array): Uint8Array {
+/**
+ * Appends a frame to `out`: type, length, header check, payload (`payload` then `tail`, if given), CRC-32 (LE) over
+ * everything before it. Throws (writing nothing) if the payload exceeds the type's limit.
+ */
+export function writeFrame(out: ByteWriter, type: RecordTypeCode, payload: Uint8Array, tail?: Uint8Array): void {
+  const length = payload.length + (tail?.length ?? 0);
   const max = MAX_PAYLOAD_BYTES[type];
-  if (payload.length > max) throw new Error(`${RECORD_TYPE_NAMES[type]} record of ${payload.length} bytes exceeds the ${max}-byte limit`);
-  let lenBytes = 1;
-  for (let v = payload.length; v >= 0x80; v >>>= 7) lenBytes++;
-  const headerEnd = 1 + lenBytes;
-  const out = new Uint8Array(headerEnd + 1 + payload.length + 4);
-  out[0] = type;
-  let v = payload.length;
-  for (let i = 1; i < headerEnd; i++) {
-    out[i] = i < headerEnd - 1 ? (v & 0x7f) | 0x80 : v;
-    v >>>= 7;
-  }
-  out[headerEnd] = crc32(out, 0, headerEnd) & 0xff;
-  out.set(payload, headerEnd + 1);
-  const crcAt = headerEnd + 1 + payload.length;
-  new DataView(out.buffer).setUint32(crcAt, crc32(out, 0, crcAt), true);
-  return out;
+  if (length > max) throw new Error(`${RECORD_TYPE_NAMES[type]} record of ${length} bytes exceeds the ${max}-byte limit`);
+  const start = out.length;
+  out.u8(type);
+  out.uvarint(length);
+  out.u8(crc32(out.view(), start, out.length) & 0xff);
+  out.bytes(payload);
+  if (tail) out.bytes(tail);
+  out.u32(crc32(out.view(), start, out.length));
+}
+
+/** A frame as a fresh byte array (see writeFrame). */
+export function encodeFrame(type: RecordTypeCode, payload: Uint8Array): Uint8Array {
+  const out = new ByteWriter(payload.length + MAX_FRAME_OVERHEAD_BYTES);
+  writeFrame(out, type, payload);
+  return out.finish();
 }
 
 /**

@@ -1,31 +1,38 @@
 // Turns a session into input-log bytes, record by record, enforcing the same ordering rules the reader checks
 // (consecutive ticks, hashes/checkpoints at the current tick, nothing after the end). Pure: no files.
 import type { TickInputRecord } from '../../shared/sim/types.ts';
-import { encodeFrame } from './frame.ts';
+import { ByteWriter } from './byte-io.ts';
+import { writeFrame } from './frame.ts';
 import { LOG_FORMAT_VERSION, LOG_MAGIC, PRELUDE_BYTES, RecordType, type LogHeader } from './log-format.ts';
-import { encodeCheckpoint, encodeEnd, encodeHash, encodeHeader, encodeTick } from './record-codec.ts';
+import { encodeHeader, writeCheckpointHead, writeEndPayload, writeHashPayload, writeTickPayload } from './record-codec.ts';
 
 /** What a writer must say about a session; format version is filled in. */
 export type LogHeaderInit = Omit<LogHeader, 'formatVersion'>;
 
-/** Encodes one log: start() once, then tick/hash/checkpoint records, then end(). Invalid calls throw, changing nothing. */
+/**
+ * Encodes one log: start() once, then tick/hash/checkpoint records, then end(). Each record can be appended to a
+ * caller's ByteWriter (no allocation: the file writer's path) or returned as a fresh array. An invalid call throws
+ * and writes nothing.
+ */
 export class LogEncoder {
   readonly header: LogHeader;
   /** Tick records encoded so far = the simulation's tick counter after them. */
   ticks = 0;
-  /** Whether end() was called. */
+  /** Whether the end record was encoded. */
   ended = false;
   private readonly startBytes: Uint8Array;
+  private readonly scratch = new ByteWriter(1024);
 
   constructor(init: LogHeaderInit) {
+    if (init === null || typeof init !== 'object') throw new Error('log header must be an object');
     this.header = { formatVersion: LOG_FORMAT_VERSION, ...init, params: { ...init.params } };
-    const frame = encodeFrame(RecordType.Header, encodeHeader(this.header));
-    const out = new Uint8Array(PRELUDE_BYTES + frame.length);
-    out.set(LOG_MAGIC, 0);
-    out[8] = LOG_FORMAT_VERSION & 0xff;
-    out[9] = LOG_FORMAT_VERSION >> 8;
-    out.set(frame, PRELUDE_BYTES);
-    this.startBytes = out;
+    const out = new ByteWriter(256);
+    out.bytes(LOG_MAGIC);
+    out.u16(LOG_FORMAT_VERSION);
+    out.u16(0);
+    writeFrame(out, RecordType.Header, encodeHeader(this.header));
+    if (out.length <= PRELUDE_BYTES) throw new Error('log header: encoding failed');
+    this.startBytes = out.finish();
   }
 
   /** The prelude and header record: the first bytes of the file. */
@@ -41,37 +48,67 @@ export class LogEncoder {
     if (tick !== this.ticks) throw new Error(`input log: ${what} record for tick ${tick}, but the log is at tick ${this.ticks} (${this.ticks} tick records written)`);
   }
 
-  /** The record of one tick's inputs; its tick must be the next one (0, 1, 2, …). */
-  tick(record: TickInputRecord): Uint8Array {
+  /** Appends the record of one tick's inputs to `out`; its tick must be the next one (0, 1, 2, …). */
+  appendTick(out: ByteWriter, record: TickInputRecord): void {
     this.open('tick');
-    const frame = encodeFrame(RecordType.Tick, encodeTick(record));
+    this.scratch.reset();
+    writeTickPayload(this.scratch, record);
     if (record.tick !== this.ticks) throw new Error(`input log: tick record for tick ${record.tick}, expected tick ${this.ticks}`);
+    writeFrame(out, RecordType.Tick, this.scratch.view());
     this.ticks++;
-    return frame;
   }
 
-  /** A state hash taken when the simulation's tick counter is `tick` (= ticks written so far; 0: initial state). */
-  hash(tick: number, hash: string): Uint8Array {
+  /** Appends a state hash taken when the simulation's tick counter is `tick` (= ticks so far; 0: initial state). */
+  appendHash(out: ByteWriter, tick: number, hash: string): void {
     this.open('hash');
-    const frame = encodeFrame(RecordType.Hash, encodeHash(tick, hash));
+    this.scratch.reset();
+    writeHashPayload(this.scratch, tick, hash);
     this.atTick(tick, 'hash');
-    return frame;
+    writeFrame(out, RecordType.Hash, this.scratch.view());
   }
 
-  /** A checkpoint (the simulation's byte form) taken when its tick counter is `tick`. */
-  checkpoint(tick: number, bytes: Uint8Array): Uint8Array {
+  /** Appends a checkpoint (the simulation's byte form) taken when its tick counter is `tick`. */
+  appendCheckpoint(out: ByteWriter, tick: number, bytes: Uint8Array): void {
     this.open('checkpoint');
-    const frame = encodeFrame(RecordType.Checkpoint, encodeCheckpoint(tick, bytes));
+    this.scratch.reset();
+    writeCheckpointHead(this.scratch, tick, bytes);
     this.atTick(tick, 'checkpoint');
-    return frame;
+    writeFrame(out, RecordType.Checkpoint, this.scratch.view(), bytes);
   }
 
-  /** The end record: final tick counter and state hash. Nothing may follow. */
-  end(tick: number, hash: string): Uint8Array {
+  /** Appends the end record: final tick counter and state hash. Nothing may follow. */
+  appendEnd(out: ByteWriter, tick: number, hash: string): void {
     this.open('end');
-    const frame = encodeFrame(RecordType.End, encodeEnd(tick, hash));
+    this.scratch.reset();
+    writeEndPayload(this.scratch, tick, hash);
     this.atTick(tick, 'end');
+    writeFrame(out, RecordType.End, this.scratch.view());
     this.ended = true;
-    return frame;
+  }
+
+  /** A tick record as a fresh array (see appendTick). */
+  tick(record: TickInputRecord): Uint8Array {
+    return this.fresh((out) => this.appendTick(out, record));
+  }
+
+  /** A hash record as a fresh array (see appendHash). */
+  hash(tick: number, hash: string): Uint8Array {
+    return this.fresh((out) => this.appendHash(out, tick, hash));
+  }
+
+  /** A checkpoint record as a fresh array (see appendCheckpoint). */
+  checkpoint(tick: number, bytes: Uint8Array): Uint8Array {
+    return this.fresh((out) => this.appendCheckpoint(out, tick, bytes));
+  }
+
+  /** The end record as a fresh array (see appendEnd). */
+  end(tick: number, hash: string): Uint8Array {
+    return this.fresh((out) => this.appendEnd(out, tick, hash));
+  }
+
+  private fresh(write: (out: ByteWriter) => void): Uint8Array {
+    const out = new ByteWriter(64);
+    write(out);
+    return out.finish();
   }
 }

@@ -59,14 +59,15 @@ export class LogParser {
     const scan = scanFrame(bytes, at, end);
     if (scan.kind === 'need') return scan;
     if (scan.kind === 'bad') return fail(scan.reason);
-    const payload = bytes.subarray(scan.payloadStart, scan.payloadEnd);
+    const ps = scan.payloadStart;
+    const pe = scan.payloadEnd;
     const sizeBytes = scan.frameEnd - at;
     const type: RecordTypeCode = scan.type;
     const pos = { index, offset: fileOffset, sizeBytes };
     try {
       if (index === 0) {
         if (type !== RecordType.Header) fail(`the first record is a ${RECORD_TYPE_NAMES[type]} record, not the header`);
-        this.header = decodeHeader(payload, this.formatVersion);
+        this.header = decodeHeader(bytes.subarray(ps, pe), this.formatVersion);
         this.recordIndex++;
         return { kind: 'header', header: this.header, frameEnd: scan.frameEnd };
       }
@@ -75,26 +76,26 @@ export class LogParser {
         case RecordType.Header:
           return fail('a second header record');
         case RecordType.Tick: {
-          const record = decodeTick(payload);
+          const record = decodeTick(bytes, ps, pe);
           if (record.tick !== this.ticks) fail(`tick record for tick ${record.tick} out of sequence (expected tick ${this.ticks})`);
           this.ticks++;
           entry = { type: 'tick', ...pos, record };
           break;
         }
         case RecordType.Hash: {
-          const h = decodeHash(payload);
+          const h = decodeHash(bytes, ps, pe);
           if (h.tick !== this.ticks) fail(`hash record for tick ${h.tick} out of sequence (tick counter is ${this.ticks})`);
           entry = { type: 'hash', ...pos, tick: h.tick, hash: h.hash };
           break;
         }
         case RecordType.Checkpoint: {
-          const c = decodeCheckpoint(payload);
+          const c = decodeCheckpoint(bytes, ps, pe);
           if (c.tick !== this.ticks) fail(`checkpoint record for tick ${c.tick} out of sequence (tick counter is ${this.ticks})`);
           entry = { type: 'checkpoint', ...pos, tick: c.tick, bytes: c.bytes };
           break;
         }
         case RecordType.End: {
-          const e = decodeEnd(payload);
+          const e = decodeEnd(bytes, ps, pe);
           if (e.tick !== this.ticks) fail(`end record says ${e.tick} ticks but ${this.ticks} tick records precede it`);
           this.ended = true;
           entry = { type: 'end', ...pos, tick: e.tick, hash: e.hash };

@@ -4,6 +4,7 @@
 import { open, type FileHandle } from 'node:fs/promises';
 import { dirname } from 'node:path';
 import type { TickInputRecord } from '../../shared/sim/types.ts';
+import { ByteWriter } from './byte-io.ts';
 import { LogEncoder, type LogHeaderInit } from './log-encoder.ts';
 import type { LogHeader } from './log-format.ts';
 
@@ -19,16 +20,8 @@ export interface LogWriterOptions {
   overwrite?: boolean;
 }
 
-function concat(chunks: Uint8Array[], sizeBytes: number): Uint8Array {
-  if (chunks.length === 1) return chunks[0];
-  const out = new Uint8Array(sizeBytes);
-  let at = 0;
-  for (const c of chunks) {
-    out.set(c, at);
-    at += c.length;
-  }
-  return out;
-}
+/** Initial size of the pending buffer; it grows as needed and is replaced after holding something huge. */
+const PENDING_BYTES = 64 * 1024;
 
 /** Writes one session's input log. Create with LogWriter.create(); always close() (or abandon()) it. */
 export class LogWriter {
@@ -38,8 +31,7 @@ export class LogWriter {
   private readonly flushEveryTicks: number;
   private readonly flushAtBytes: number;
   private readonly syncOnCheckpoint: boolean;
-  private pending: Uint8Array[] = [];
-  private pendingBytes = 0;
+  private pending = new ByteWriter(PENDING_BYTES);
   private ticksSinceFlush = 0;
   private chain: Promise<void> = Promise.resolve();
   private failure: Error | null = null;
@@ -77,7 +69,8 @@ export class LogWriter {
       throw new Error(`cannot create input log ${path}: ${e.message}`);
     }
     const writer = new LogWriter(path, fh, encoder, opts);
-    writer.push(encoder.start());
+    writer.pending.bytes(encoder.start());
+    writer.bytesAppended = writer.pending.length;
     try {
       await writer.flushNow(true);
       await syncDirectory(dirname(path));
@@ -103,23 +96,23 @@ export class LogWriter {
     if (this.closed) throw new Error(`input log ${this.path} is closed`);
   }
 
-  private push(bytes: Uint8Array): void {
-    this.pending.push(bytes);
-    this.pendingBytes += bytes.length;
-    this.bytesAppended += bytes.length;
+  /** Runs an encoder call that appends to the pending buffer and counts what it added. */
+  private append(write: (out: ByteWriter) => void): void {
+    const before = this.pending.length;
+    write(this.pending);
+    this.bytesAppended += this.pending.length - before;
   }
 
   /** Queues the buffered bytes (then an fsync if asked) behind earlier writes; resolves when done. */
   private flushNow(sync: boolean): Promise<void> {
-    const chunks = this.pending;
-    const size = this.pendingBytes;
-    this.pending = [];
-    this.pendingBytes = 0;
+    const size = this.pending.length;
+    const data = size > 0 ? this.pending.finish() : null;
+    if (this.pending.capacityBytes > 16 * PENDING_BYTES) this.pending = new ByteWriter(PENDING_BYTES);
+    else this.pending.reset();
     this.ticksSinceFlush = 0;
     const job = this.chain.then(async () => {
       if (this.failure) throw this.failure;
-      if (size > 0) {
-        const data = concat(chunks, size);
+      if (data) {
         for (let off = 0; off < size; ) {
           const { bytesWritten } = await this.fh.write(data, off, size - off);
           off += bytesWritten;
@@ -143,21 +136,21 @@ export class LogWriter {
   /** Appends one tick's input record (write-ahead: before the simulation applies it). */
   appendTick(record: TickInputRecord): void {
     this.usable();
-    this.push(this.encoder.tick(record));
+    this.append((out) => this.encoder.appendTick(out, record));
     this.ticksSinceFlush++;
-    if (this.ticksSinceFlush >= this.flushEveryTicks || this.pendingBytes >= this.flushAtBytes) this.background(false);
+    if (this.ticksSinceFlush >= this.flushEveryTicks || this.pending.length >= this.flushAtBytes) this.background(false);
   }
 
   /** Appends a state hash taken at tick counter `tick`. */
   appendHash(tick: number, hash: string): void {
     this.usable();
-    this.push(this.encoder.hash(tick, hash));
+    this.append((out) => this.encoder.appendHash(out, tick, hash));
   }
 
   /** Appends a checkpoint taken at tick counter `tick`, then flushes (and fsyncs, per options) in the background. */
   appendCheckpoint(tick: number, bytes: Uint8Array): void {
     this.usable();
-    this.push(this.encoder.checkpoint(tick, bytes));
+    this.append((out) => this.encoder.appendCheckpoint(out, tick, bytes));
     this.background(this.syncOnCheckpoint);
   }
 
@@ -181,7 +174,7 @@ export class LogWriter {
   /** Appends the end record (final tick counter and hash), flushes, fsyncs and closes the file. */
   async close(finalTick: number, finalHash: string): Promise<void> {
     this.usable();
-    this.push(this.encoder.end(finalTick, finalHash));
+    this.append((out) => this.encoder.appendEnd(out, finalTick, finalHash));
     this.closed = true;
     try {
       await this.flushNow(true);

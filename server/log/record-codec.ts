@@ -12,7 +12,8 @@ const SEED_STRING = 1;
 const Field = { MoveX: 1, MoveZ: 2, Yaw: 4, Pitch: 8, Buttons: 16 } as const;
 const FIELD_MASK = 31;
 
-const utf8Bytes = (text: string): number => new TextEncoder().encode(text).length;
+const textEncoder = new TextEncoder();
+const utf8Bytes = (text: string): number => textEncoder.encode(text).length;
 
 function checkHeaderString(value: unknown, field: string): string {
   if (typeof value !== 'string') throw new Error(`log header: ${field} must be a string, got ${typeof value}`);
@@ -30,6 +31,7 @@ function checkCount(value: unknown, field: string, max: number): number {
 /** Encodes a header payload; throws a clear Error on a field out of range. */
 export function encodeHeader(h: LogHeader): Uint8Array {
   if (h.formatVersion !== LOG_FORMAT_VERSION) throw new Error(`log header: this build writes format version ${LOG_FORMAT_VERSION}, not ${h.formatVersion}`);
+  if (h === null || typeof h !== 'object' || h.params === null || typeof h.params !== 'object') throw new Error('log header: params must be an object');
   const w = new ByteWriter();
   w.string(checkHeaderString(h.joltVersion, 'joltVersion'));
   if (checkHeaderString(h.scenario, 'scenario') === '') throw new Error('log header: scenario name is empty');
@@ -101,12 +103,6 @@ function checkPlayerId(id: unknown, where: string): number {
   return id;
 }
 
-function checkAscending(ids: number[], where: string): void {
-  for (let i = 1; i < ids.length; i++) {
-    if (!(ids[i] > ids[i - 1])) throw new Error(`${where}: player ids must be sorted ascending and unique (${ids[i - 1]} then ${ids[i]})`);
-  }
-}
-
 /** Validates a tick's input record against what the log can store; throws a clear Error naming the field. */
 export function checkTickRecord(rec: TickInputRecord): void {
   if (rec === null || typeof rec !== 'object') throw new Error('tick record must be an object');
@@ -115,18 +111,29 @@ export function checkTickRecord(rec: TickInputRecord): void {
   if (!Array.isArray(rec.leaves) || !Array.isArray(rec.joins) || !Array.isArray(rec.commands)) {
     throw new Error(`${where}: leaves, joins and commands must be arrays`);
   }
-  checkAscending(rec.leaves.map((id) => checkPlayerId(id, `${where} leave`)), `${where} leaves`);
-  checkAscending(rec.joins.map((j) => checkPlayerId(j?.playerId, `${where} join`)), `${where} joins`);
+  let prev = -1;
+  for (const raw of rec.leaves) prev = checkNextId(raw, prev, `${where} leaves`);
+  prev = -1;
   for (const j of rec.joins) {
+    if (j === null || typeof j !== 'object') throw new Error(`${where}: a join must be an object`);
+    prev = checkNextId(j.playerId, prev, `${where} joins`);
     if (typeof j.name !== 'string') throw new Error(`${where}: join of player ${j.playerId} has no name string`);
-    if (utf8Bytes(j.name) > MAX_NAME_BYTES) throw new Error(`${where}: name of player ${j.playerId} is longer than ${MAX_NAME_BYTES} bytes`);
+    if (j.name.length > MAX_NAME_BYTES / 3 && utf8Bytes(j.name) > MAX_NAME_BYTES) throw new Error(`${where}: name of player ${j.playerId} is longer than ${MAX_NAME_BYTES} bytes`);
   }
-  checkAscending(rec.commands.map((c) => checkPlayerId(c?.playerId, `${where} command`)), `${where} commands`);
+  prev = -1;
   for (const c of rec.commands) {
+    if (c === null || typeof c !== 'object') throw new Error(`${where}: a command must be an object`);
+    prev = checkNextId(c.playerId, prev, `${where} commands`);
     const v = validateInputCommand(c.input);
     if (!v.ok) throw new Error(`${where}: command of player ${c.playerId} is invalid: ${v.error}`);
     if (v.clamped) throw new Error(`${where}: command of player ${c.playerId} is not a validated InputCommand (pass it through validateInputCommand first)`);
   }
+}
+
+function checkNextId(id: unknown, prev: number, where: string): number {
+  const v = checkPlayerId(id, where);
+  if (!(v > prev)) throw new Error(`${where}: player ids must be sorted ascending and unique (${prev} then ${v})`);
+  return v;
 }
 
 function writeCommand(w: ByteWriter, cmd: InputCommand): void {
@@ -144,9 +151,16 @@ function writeCommand(w: ByteWriter, cmd: InputCommand): void {
   if (mask & Field.Buttons) w.u8(cmd.buttons);
 }
 
-/** Encodes a tick record payload; `check` (default true) validates it first. */
-export function encodeTick(rec: TickInputRecord, w: ByteWriter = new ByteWriter(64), check = true): Uint8Array {
-  if (check) checkTickRecord(rec);
+/** Encodes a tick record payload as a fresh array (validated first). */
+export function encodeTick(rec: TickInputRecord): Uint8Array {
+  const w = new ByteWriter(64);
+  writeTickPayload(w, rec);
+  return w.finish();
+}
+
+/** Validates a tick record, then appends its payload to `w` (nothing is written if it is invalid). */
+export function writeTickPayload(w: ByteWriter, rec: TickInputRecord): void {
+  checkTickRecord(rec);
   w.uvarint(rec.tick);
   w.uvarint(rec.leaves.length);
   for (const id of rec.leaves) w.uvarint(id);
@@ -160,7 +174,6 @@ export function encodeTick(rec: TickInputRecord, w: ByteWriter = new ByteWriter(
     w.uvarint(c.playerId);
     writeCommand(w, c.input);
   }
-  return w.finish();
 }
 
 function readPlayerId(r: ByteReader, prev: number, what: string): number {
@@ -170,9 +183,9 @@ function readPlayerId(r: ByteReader, prev: number, what: string): number {
   return id;
 }
 
-/** Decodes a tick record payload into a TickInputRecord (commands re-validated). */
-export function decodeTick(payload: Uint8Array): TickInputRecord {
-  const r = new ByteReader(payload);
+/** Decodes a tick record payload (bytes[start, end)) into a TickInputRecord (commands re-validated). */
+export function decodeTick(payload: Uint8Array, start = 0, end = payload.length): TickInputRecord {
+  const r = new ByteReader(payload, start, end);
   const tick = r.uvarint('tick');
   const leaves: number[] = [];
   const nLeaves = r.uvarint('leave count');
@@ -207,71 +220,97 @@ export function decodeTick(payload: Uint8Array): TickInputRecord {
   return { tick, leaves, joins, commands };
 }
 
-const HEX = /^[0-9a-f]{16}$/;
+function hexDigit(code: number): number {
+  if (code >= 48 && code <= 57) return code - 48;
+  if (code >= 97 && code <= 102) return code - 87;
+  return -1;
+}
+
+function checkHash(hash: string): void {
+  let ok = typeof hash === 'string' && hash.length === 16;
+  for (let i = 0; ok && i < 16; i++) ok = hexDigit(hash.charCodeAt(i)) >= 0;
+  if (!ok) throw new Error(`state hash must be 16 lowercase hex digits, got ${JSON.stringify(hash)}`);
+}
 
 function writeHash(w: ByteWriter, hash: string): void {
-  if (typeof hash !== 'string' || !HEX.test(hash)) throw new Error(`state hash must be 16 lowercase hex digits, got ${JSON.stringify(hash)}`);
-  for (let i = 0; i < 16; i += 2) w.u8(parseInt(hash.slice(i, i + 2), 16));
+  for (let i = 0; i < 16; i += 2) w.u8((hexDigit(hash.charCodeAt(i)) << 4) | hexDigit(hash.charCodeAt(i + 1)));
 }
+
+const HEX_PAIRS = Array.from({ length: 256 }, (_, i) => i.toString(16).padStart(2, '0'));
 
 function readHash(r: ByteReader): string {
   const b = r.bytes(8, 'hash');
-  let s = '';
-  for (let i = 0; i < 8; i++) s += (b[i] < 16 ? '0' : '') + b[i].toString(16);
-  return s;
+  return HEX_PAIRS[b[0]] + HEX_PAIRS[b[1]] + HEX_PAIRS[b[2]] + HEX_PAIRS[b[3]] + HEX_PAIRS[b[4]] + HEX_PAIRS[b[5]] + HEX_PAIRS[b[6]] + HEX_PAIRS[b[7]];
 }
 
 function checkTick(tick: number, what: string): void {
   if (!Number.isSafeInteger(tick) || tick < 0) throw new Error(`${what}: tick must be a non-negative integer, got ${String(tick)}`);
 }
 
-/** Encodes a hash record payload: the tick counter when hashed and the 64-bit hash. */
-export function encodeHash(tick: number, hash: string): Uint8Array {
+/** Appends a hash record payload (tick counter when hashed, 64-bit hash) to `w`; validates first. */
+export function writeHashPayload(w: ByteWriter, tick: number, hash: string): void {
   checkTick(tick, 'hash record');
-  const w = new ByteWriter(16);
+  checkHash(hash);
   w.uvarint(tick);
   writeHash(w, hash);
+}
+
+/** Encodes a hash record payload as a fresh array. */
+export function encodeHash(tick: number, hash: string): Uint8Array {
+  const w = new ByteWriter(16);
+  writeHashPayload(w, tick, hash);
   return w.finish();
 }
 
 /** Decodes a hash record payload. */
-export function decodeHash(payload: Uint8Array): { tick: number; hash: string } {
-  const r = new ByteReader(payload);
+export function decodeHash(payload: Uint8Array, start = 0, end = payload.length): { tick: number; hash: string } {
+  const r = new ByteReader(payload, start, end);
   const tick = r.uvarint('tick');
   const hash = readHash(r);
   r.expectEnd('hash record');
   return { tick, hash };
 }
 
-/** Encodes a checkpoint payload: the tick counter and the simulation's checkpoint bytes. */
-export function encodeCheckpoint(tick: number, bytes: Uint8Array): Uint8Array {
+/** Appends the head of a checkpoint payload (the tick counter) to `w`; the checkpoint bytes follow it. */
+export function writeCheckpointHead(w: ByteWriter, tick: number, bytes: Uint8Array): void {
   checkTick(tick, 'checkpoint record');
   if (!(bytes instanceof Uint8Array)) throw new Error('checkpoint record: bytes must be a Uint8Array');
-  const w = new ByteWriter(bytes.length + 8);
   w.uvarint(tick);
+}
+
+/** Encodes a whole checkpoint payload (tick counter, then the simulation's checkpoint bytes) as a fresh array. */
+export function encodeCheckpoint(tick: number, bytes: Uint8Array): Uint8Array {
+  const w = new ByteWriter(bytes.length + 8);
+  writeCheckpointHead(w, tick, bytes);
   w.bytes(bytes);
   return w.finish();
 }
 
 /** Decodes a checkpoint payload (the bytes are a copy, safe to keep). */
-export function decodeCheckpoint(payload: Uint8Array): { tick: number; bytes: Uint8Array } {
-  const r = new ByteReader(payload);
+export function decodeCheckpoint(payload: Uint8Array, start = 0, end = payload.length): { tick: number; bytes: Uint8Array } {
+  const r = new ByteReader(payload, start, end);
   const tick = r.uvarint('tick');
-  return { tick, bytes: payload.slice(r.pos) };
+  return { tick, bytes: payload.slice(r.pos, end) };
 }
 
-/** Encodes the end record payload: final tick counter and final state hash. */
-export function encodeEnd(tick: number, hash: string): Uint8Array {
+/** Appends the end record payload (final tick counter, final state hash) to `w`; validates first. */
+export function writeEndPayload(w: ByteWriter, tick: number, hash: string): void {
   checkTick(tick, 'end record');
-  const w = new ByteWriter(16);
+  checkHash(hash);
   w.uvarint(tick);
   writeHash(w, hash);
+}
+
+/** Encodes the end record payload as a fresh array. */
+export function encodeEnd(tick: number, hash: string): Uint8Array {
+  const w = new ByteWriter(16);
+  writeEndPayload(w, tick, hash);
   return w.finish();
 }
 
 /** Decodes the end record payload. */
-export function decodeEnd(payload: Uint8Array): { tick: number; hash: string } {
-  const r = new ByteReader(payload);
+export function decodeEnd(payload: Uint8Array, start = 0, end = payload.length): { tick: number; hash: string } {
+  const r = new ByteReader(payload, start, end);
   const tick = r.uvarint('tick');
   const hash = readHash(r);
   r.expectEnd('end record');
