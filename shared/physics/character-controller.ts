@@ -241,6 +241,12 @@ export class CharacterController {
     return { x: n.GetX(), y: n.GetY(), z: n.GetZ() };
   }
 
+  /** Velocity of what the character stands on (a moving platform), zero in the air; add it to ride platforms. */
+  get groundVelocity(): Vec3Like {
+    const v = this.live().GetGroundVelocity(); // reused temporary
+    return { x: v.GetX(), y: v.GetY(), z: v.GetZ() };
+  }
+
   /** Whether a jump is queued for the next move(). */
   get jumpPending(): boolean {
     return this.jumpRequested > 0;
