@@ -61,9 +61,10 @@ export class BitWriter {
     const low = value - high * ((1 << k) >>> 0);
     const x1 = high + 1;
     const m = 31 - Math.clz32(x1);
-    // m zeros, then x1 in m+1 bits (its top bit is the terminating 1), then the k low bits.
+    // m zeros, a terminating 1 (x1's top bit), x1's m lower bits, then the k low bits of the value.
     this.writeBits(0, m);
-    this.writeBits(x1, m + 1);
+    this.writeBits(1, 1);
+    this.writeBits(x1 - ((1 << m) >>> 0), m);
     this.writeBits(low, k);
   }
 
@@ -134,7 +135,7 @@ export class BitReader {
       m++;
       if (m > 31) throw new Error(`bit stream corrupt: Exp-Golomb prefix longer than 31 bits at bit ${this.bitPos}`);
     }
-    // The terminating 1 was the top bit of x1; read its m remaining bits.
+    // The terminating 1 was x1's top bit; its m lower bits follow.
     const rest = this.readBits(m);
     const x1 = ((1 << m) >>> 0) + rest;
     const high = x1 - 1;

@@ -49,7 +49,7 @@ export interface SnapshotFormat {
   /** Size of one position step per axis (m). */
   readonly positionStepMetres: readonly [number, number, number];
   readonly rotationBits: number;
-  /** Largest rotation component integer: 2^rotationBits − 1. */
+  /** Largest valid rotation component integer: 2^rotationBits − 2 (the centre, rotationMax / 2, is exactly zero). */
   readonly rotationMax: number;
 }
 
@@ -102,7 +102,7 @@ export function snapshotFormatFromSpec(bounds: Bounds, spec: SnapshotFormatSpec)
     positionBits: [bitsForSteps(steps[0]), bitsForSteps(steps[1]), bitsForSteps(steps[2])] as const,
     positionStepMetres: axes.map((a, i) => (bounds.max[a] - bounds.min[a]) / steps[i]) as unknown as readonly [number, number, number],
     rotationBits: rb,
-    rotationMax: ((1 << rb) >>> 0) - 1,
+    rotationMax: ((1 << rb) >>> 0) - 2,
   });
 }
 
@@ -128,7 +128,8 @@ export function dequantizeAxis(format: SnapshotFormat, axis: 0 | 1 | 2, q: numbe
 }
 
 /**
- * Smallest-three: writes [index of the largest |component|, three others quantized] into out[offset..offset+3].
+ * Smallest-three: writes [index of the largest |component|, three others quantized] into out[offset..offset+3];
+ * a component v ∈ [−1/√2, 1/√2] maps to round(v·√2·h) + h with h = 2^(bits−1) − 1, so zero is exact.
  * Sign convention: the quaternion is negated when its largest component is negative (q and −q are one rotation);
  * ties pick the lowest index (x, y, z, w order). A zero or NaN quaternion quantizes as identity.
  */
@@ -152,25 +153,24 @@ export function quantizeRotation(format: SnapshotFormat, x: number, y: number, z
   }
   const norm = Math.sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2] + c[3] * c[3]);
   const sign = c[largest] < 0 ? -1 / norm : 1 / norm;
-  const max = format.rotationMax;
+  const half = format.rotationMax / 2;
   out[offset] = largest;
   let k = 1;
   for (let i = 0; i < 4; i++) {
     if (i === largest) continue;
-    const v = c[i] * sign;
-    let q = Math.round(((v + ROT_RANGE) / (2 * ROT_RANGE)) * max);
-    if (!(q >= 0)) q = 0;
-    else if (q > max) q = max;
-    out[offset + k++] = q;
+    let q = Math.round(((c[i] * sign) / ROT_RANGE) * half);
+    if (!(q >= -half)) q = -half;
+    else if (q > half) q = half;
+    out[offset + k++] = q + half;
   }
 }
 
 /** Writes the unit quaternion (x, y, z, w) for a quantized rotation into out[offset..offset+3]. */
 export function dequantizeRotation(format: SnapshotFormat, index: number, a: number, b: number, c: number, out: Float32Array | Float64Array, offset: number): void {
-  const max = format.rotationMax;
-  const va = (a / max) * 2 * ROT_RANGE - ROT_RANGE;
-  const vb = (b / max) * 2 * ROT_RANGE - ROT_RANGE;
-  const vc = (c / max) * 2 * ROT_RANGE - ROT_RANGE;
+  const half = format.rotationMax / 2;
+  const va = ((a - half) / half) * ROT_RANGE;
+  const vb = ((b - half) / half) * ROT_RANGE;
+  const vc = ((c - half) / half) * ROT_RANGE;
   const rest = 1 - va * va - vb * vb - vc * vc;
   const vl = rest > 0 ? Math.sqrt(rest) : 0;
   const q = index === 0 ? [vl, va, vb, vc] : index === 1 ? [va, vl, vb, vc] : index === 2 ? [va, vb, vl, vc] : [va, vb, vc, vl];

@@ -119,7 +119,9 @@ function decode(value: unknown): ServerMessage {
       arity(3, 'snapshot');
       need(value[1] instanceof Uint8Array, 'snapshot.bytes must be binary');
       const descriptors = value[2] === null ? [] : unpackDescriptors(value[2], 'snapshot.descriptors');
-      return { type: 'snapshot', bytes: value[1], descriptors };
+      const raw = value[1] as Uint8Array;
+      // A plain Uint8Array view (Node's msgpackr hands out Buffers).
+      return { type: 'snapshot', bytes: new Uint8Array(raw.buffer, raw.byteOffset, raw.byteLength), descriptors };
     }
     case ServerOpcode.Events: {
       arity(2, 'events');

@@ -340,9 +340,7 @@ function decodeBodies(format: SnapshotFormat, r: BitReader, h: SnapshotHeader, b
     out[a + 1] = checkRange(r.readBits(pb[1]), 0, steps[1], 'position y', h.tick);
     out[a + 2] = checkRange(r.readBits(pb[2]), 0, steps[2], 'position z', h.tick);
     out[a + 3] = r.readBits(2);
-    out[a + 4] = r.readBits(rb);
-    out[a + 5] = r.readBits(rb);
-    out[a + 6] = r.readBits(rb);
+    for (let f = 4; f < 7; f++) out[a + f] = checkRange(r.readBits(rb), 0, rmax, 'rotation component', h.tick);
     out[a + 7] = r.readBits(1);
   }
   for (const idx of changed) {
@@ -356,7 +354,7 @@ function decodeBodies(format: SnapshotFormat, r: BitReader, h: SnapshotHeader, b
         for (let f = 4; f < 7; f++) out[a + f] = checkRange(out[a + f] + r.readSignedExpGolomb(kRot), 0, rmax, 'rotation component', h.tick);
       } else {
         out[a + 3] = r.readBits(2);
-        for (let f = 4; f < 7; f++) out[a + f] = r.readBits(rb);
+        for (let f = 4; f < 7; f++) out[a + f] = checkRange(r.readBits(rb), 0, rmax, 'rotation component', h.tick);
       }
     }
     out[a + 7] = r.readBits(1);

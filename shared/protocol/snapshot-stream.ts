@@ -7,7 +7,7 @@ import type { SnapshotFormat } from './quantization.ts';
 import { decodeSnapshot, encodeSnapshot, readSnapshotHeader } from './snapshot-codec.ts';
 import type { QuantizedFrame } from './snapshot-frame.ts';
 
-/** A bounded map tick → entry that forgets the oldest insertion first. */
+/** A bounded map tick → entry that forgets the oldest tick first (so a late, stale entry never pushes out newer ones). */
 export class TickHistory<T> {
   readonly capacity: number;
   private readonly entries = new Map<number, T>();
@@ -17,12 +17,12 @@ export class TickHistory<T> {
     this.capacity = capacity;
   }
 
-  /** Stores an entry (replacing one with the same tick) and evicts the oldest beyond capacity. */
+  /** Stores an entry (replacing one with the same tick) and evicts the oldest ticks beyond capacity. */
   set(tick: number, entry: T): void {
-    this.entries.delete(tick);
     this.entries.set(tick, entry);
     while (this.entries.size > this.capacity) {
-      const oldest = this.entries.keys().next().value as number;
+      let oldest = Infinity;
+      for (const t of this.entries.keys()) if (t < oldest) oldest = t;
       this.entries.delete(oldest);
     }
   }

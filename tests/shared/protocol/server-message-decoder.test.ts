@@ -1,0 +1,64 @@
+// Tests of the client-side decoder of server frames: malformed data, unknown opcodes, wrong field types, bad
+// descriptors and unknown events become error results that name the field, never exceptions.
+import { describe, expect, it } from 'vitest';
+import { encodeServerMessage, packValue, unpackFrame } from '../../../shared/protocol/codec.ts';
+import { ServerOpcode } from '../../../shared/protocol/opcodes.ts';
+import { decodeServerMessage } from '../../../shared/protocol/server-message-decoder.ts';
+import { Prng } from '../../../shared/sim/prng.ts';
+import { sampleWelcome } from './sample-messages.ts';
+
+function errorOf(data: unknown): string {
+  const r = decodeServerMessage(data);
+  if (r.ok) throw new Error(`expected an error, got ${r.message.type}`);
+  return r.error;
+}
+
+describe('server-message-decoder', () => {
+  it('rejects non-binary, non-msgpack and non-array frames', () => {
+    expect(errorOf('hi')).toMatch(/binary/);
+    expect(errorOf(new Uint8Array([0x92, 1]))).toMatch(/not a msgpack value/);
+    expect(errorOf(packValue({ a: 1 }))).toMatch(/array \[opcode/);
+    expect(errorOf(packValue([3]))).toBe('unknown server opcode 3');
+  });
+
+  it('names the bad field of a pong, snapshot, error or bye', () => {
+    expect(errorOf(packValue([ServerOpcode.Pong, 1, -1, 2, 0]))).toMatch(/pong.serverTick/);
+    expect(errorOf(packValue([ServerOpcode.Pong, 1, 2, Number.NaN, 0]))).toMatch(/pong.serverTimeMs/);
+    expect(errorOf(packValue([ServerOpcode.Pong, 1, 2, 3]))).toMatch(/pong must have 4 field/);
+    expect(errorOf(packValue([ServerOpcode.Snapshot, 'bytes', null]))).toMatch(/snapshot.bytes must be binary/);
+    expect(errorOf(packValue([ServerOpcode.Snapshot, new Uint8Array(1), [[], [[1]]]]))).toMatch(/snapshot.descriptors.rows\[0\]/);
+    expect(errorOf(packValue([ServerOpcode.Error, 5, 'x']))).toMatch(/error.code/);
+    expect(errorOf(packValue([ServerOpcode.Bye, 'kicked']))).toMatch(/bye must have 2 field/);
+  });
+
+  it('checks every welcome field, including the snapshot format and geometry', () => {
+    const welcome = unpackFrame(encodeServerMessage(sampleWelcome)) as [number, Record<string, unknown>];
+    const broken = (patch: (w: Record<string, unknown>) => void): string => {
+      const copy = structuredClone(welcome);
+      patch(copy[1]);
+      return errorOf(packValue(copy));
+    };
+    expect(broken((w) => delete w.playerId)).toMatch(/welcome.playerId/);
+    expect(broken((w) => (w.snapshotFormat = { positionSteps: [1, 2] }))).toMatch(/welcome.snapshotFormat/);
+    expect(broken((w) => ((w.scenario as { bounds: unknown }).bounds = { min: { x: 0, y: 0 }, max: { x: 1, y: 1, z: 1 } }))).toMatch(/bounds.min.z/);
+    expect(broken((w) => ((w.scenario as { params: unknown }).params = { a: 'x' }))).toMatch(/params.a/);
+    expect(broken((w) => (w.staticBodies = [[{ kind: 'box' }], []]))).toMatch(/welcome.staticBodies.shapes\[0\].halfExtents/);
+  });
+
+  it('rejects unknown event types and events with missing fields', () => {
+    expect(errorOf(packValue([ServerOpcode.Events, [{ type: 'explode', tick: 1 }]]))).toMatch(/events\[0\].type "explode"/);
+    expect(errorOf(packValue([ServerOpcode.Events, [{ type: 'bodySpawned', tick: 1 }]]))).toMatch(/events\[0\].bodyId/);
+    expect(errorOf(packValue([ServerOpcode.Events, [{ type: 'playerLeft', tick: -1, playerId: 1 }]]))).toMatch(/events\[0\].tick/);
+  });
+
+  it('never throws on random garbage', () => {
+    const rng = new Prng(4);
+    const valid = encodeServerMessage(sampleWelcome);
+    for (let i = 0; i < 3000; i++) {
+      const bytes = valid.slice();
+      for (let k = 0; k < 3; k++) bytes[rng.int(0, bytes.length - 1)] = rng.int(0, 255);
+      const r = decodeServerMessage(bytes);
+      if (!r.ok) expect(typeof r.error).toBe('string');
+    }
+  });
+});

@@ -1,0 +1,187 @@
+// Tests of the per-client snapshot streams: acks pick the baseline, lost and reordered acks and snapshots never
+// break decoding, evicted baselines fall back to full snapshots, descriptors are resent until acked, and a real
+// Jolt stream decodes to the server's exact frames.
+import { describe, expect, it } from 'vitest';
+import { createSnapshotFormat } from '../../../shared/protocol/quantization.ts';
+import { framesEqual, quantizeFrame, type QuantizedFrame } from '../../../shared/protocol/snapshot-frame.ts';
+import { SnapshotDecoder, SnapshotEncoder, TickHistory, type EncodedSnapshot } from '../../../shared/protocol/snapshot-stream.ts';
+import { Prng } from '../../../shared/sim/prng.ts';
+import { makeWorld } from '../../helpers/physics.ts';
+import { SYNTH_BOUNDS, SyntheticWorld } from './synthetic-world.ts';
+
+const format = createSnapshotFormat(SYNTH_BOUNDS);
+
+function frameOf(world: SyntheticWorld): QuantizedFrame {
+  return quantizeFrame(format, world.tick, world.read(), world.characterStates());
+}
+
+describe('snapshot-stream', () => {
+  it('sends full snapshots until an ack arrives, then deltas against the newest acked tick', () => {
+    const world = new SyntheticWorld({ seed: 1 });
+    const enc = new SnapshotEncoder(format);
+    const dec = new SnapshotDecoder(format);
+    const describe = (id: number) => world.describe(id);
+    world.step();
+    const s1 = enc.encode(frameOf(world), describe);
+    world.step();
+    const s2 = enc.encode(frameOf(world), describe);
+    expect([s1.baselineTick, s2.baselineTick]).toEqual([null, null]);
+    dec.decode(s1.bytes);
+    expect(enc.acknowledge(1)).toBe('baseline');
+    world.step();
+    const s3 = enc.encode(frameOf(world), describe);
+    expect(s3.baselineTick).toBe(1);
+    expect(s3.bytes.length).toBeLessThan(s1.bytes.length / 3);
+    expect(framesEqual(dec.decode(s3.bytes).frame, frameOf(world))).toBe(true);
+    expect(enc.stats).toMatchObject({ full: 2, delta: 1, acks: 1 });
+  });
+
+  it('never moves the baseline back on a late ack and ignores acks of ticks it never sent', () => {
+    const world = new SyntheticWorld({ seed: 2 });
+    const enc = new SnapshotEncoder(format);
+    for (let i = 0; i < 5; i++) {
+      world.step();
+      enc.encode(frameOf(world), (id) => world.describe(id));
+    }
+    expect(enc.acknowledge(4)).toBe('baseline');
+    expect(enc.acknowledge(2)).toBe('older');
+    expect(enc.acknowledge(99)).toBe('unknown');
+    expect(enc.baselineTick).toBe(4);
+    expect(enc.stats.unknownAcks).toBe(1);
+  });
+
+  it('falls back to a full snapshot once the acked frame has left the history', () => {
+    const world = new SyntheticWorld({ seed: 3 });
+    const enc = new SnapshotEncoder(format, { historySize: 8 });
+    world.step();
+    enc.encode(frameOf(world), (id) => world.describe(id));
+    enc.acknowledge(1);
+    // Ticks 2..9 still find tick 1 among the last 8 snapshots sent; tick 10 does not.
+    for (let i = 0; i < 8; i++) {
+      world.step();
+      expect(enc.encode(frameOf(world), (id) => world.describe(id)).baselineTick).toBe(1);
+    }
+    world.step();
+    expect(enc.encode(frameOf(world), (id) => world.describe(id)).baselineTick).toBe(null);
+    expect(enc.baselineTick).toBe(null);
+  });
+
+  it('resends a spawned body descriptor until a snapshot carrying it is acked, and never sends welcome bodies', () => {
+    const world = new SyntheticWorld({ seed: 4, bodies: 5, spawnChance: 0, removeChance: 0 });
+    const enc = new SnapshotEncoder(format);
+    enc.markDescriptorsKnown(world.bodies.map((b) => b.id));
+    const describe = (id: number) => world.describe(id);
+    world.step();
+    expect(enc.encode(frameOf(world), describe).descriptors).toEqual([]);
+    enc.acknowledge(1);
+    world.bodies.push({ id: 77, p: [0, 1, 0], q: [0, 0, 0, 1], active: true, kinematic: false });
+    world.step();
+    const carried = enc.encode(frameOf(world), describe);
+    expect(carried.descriptors.map((d) => d.id)).toEqual([77]);
+    world.step();
+    expect(enc.encode(frameOf(world), describe).descriptors.map((d) => d.id)).toEqual([77]);
+    enc.acknowledge(2);
+    world.step();
+    const after = enc.encode(frameOf(world), describe);
+    expect(after.baselineTick).toBe(2);
+    expect(after.descriptors).toEqual([]);
+    // A full snapshot after a reset still skips descriptors the client holds.
+    enc.reset();
+    world.step();
+    const full = enc.encode(frameOf(world), describe);
+    expect(full.baselineTick).toBe(null);
+    expect(full.descriptors).toEqual([]);
+  });
+
+  it('throws a clear error when the server has no descriptor for a spawned body', () => {
+    const world = new SyntheticWorld({ seed: 5, bodies: 2 });
+    const enc = new SnapshotEncoder(format);
+    expect(() => enc.encode(frameOf(world), () => undefined)).toThrow(/no descriptor for spawned body 0/);
+  });
+
+  it('decodes exactly over a long stream with lost, delayed and reordered snapshots and acks', () => {
+    // 4000 ticks, a snapshot every 2 ticks, 10% of snapshots and 30% of acks lost, delays of 2–30 ticks each way.
+    const world = new SyntheticWorld({ seed: 31, bodies: 120, characters: 4 });
+    const rng = new Prng(77);
+    const enc = new SnapshotEncoder(format);
+    const dec = new SnapshotDecoder(format);
+    const truth = new TickHistory<QuantizedFrame>(400);
+    const toClient: Array<{ at: number; s: EncodedSnapshot }> = [];
+    const toServer: Array<{ at: number; tick: number }> = [];
+    let decoded = 0;
+    let baselineMisses = 0;
+    const descriptors = new Set<number>(world.bodies.map((b) => b.id));
+    enc.markDescriptorsKnown(descriptors);
+    for (let t = 0; t < 4000; t++) {
+      world.step();
+      for (let i = toServer.length - 1; i >= 0; i--) {
+        if (toServer[i].at <= t) {
+          enc.acknowledge(toServer[i].tick);
+          toServer.splice(i, 1);
+        }
+      }
+      if (t % 2 === 0) {
+        const frame = frameOf(world);
+        truth.set(frame.tick, frame);
+        const s = enc.encode(frame, (id) => world.describe(id));
+        if (rng.next() >= 0.1) toClient.push({ at: t + rng.int(2, 30), s });
+      }
+      for (let i = 0; i < toClient.length; i++) {
+        if (toClient[i].at > t) continue;
+        const { s } = toClient.splice(i--, 1)[0];
+        let got: QuantizedFrame;
+        try {
+          got = dec.decode(s.bytes).frame;
+        } catch (e) {
+          expect((e as Error).message).toMatch(/not in the decoder's history/);
+          baselineMisses++;
+          continue;
+        }
+        for (const d of s.descriptors) descriptors.add(d.id);
+        expect(framesEqual(got, truth.get(s.tick)!)).toBe(true);
+        // Every body the client can see has a descriptor it received.
+        for (const id of got.bodyIds) expect(descriptors.has(id)).toBe(true);
+        decoded++;
+        if (rng.next() >= 0.3) toServer.push({ at: t + rng.int(2, 30), tick: s.tick });
+      }
+    }
+    expect(decoded).toBeGreaterThan(1500);
+    expect(enc.stats.delta).toBeGreaterThan(1500);
+    // Baselines are acked frames, which the client decoded and still holds.
+    expect(baselineMisses).toBe(0);
+  });
+
+  it('decodes a real Jolt stream of falling, spawning and removed bodies exactly', async () => {
+    const world = await makeWorld({ maxBodies: 512 });
+    try {
+      world.addBox({ x: 60, y: 0.5, z: 60 }, { x: 0, y: -0.5, z: 0 }, null, { motion: 'static' });
+      const rng = new Prng(8);
+      for (let i = 0; i < 150; i++) {
+        world.addBox({ x: 0.5, y: 0.5, z: 0.5 }, { x: rng.range(-10, 10), y: rng.range(1, 20), z: rng.range(-10, 10) }, null, {});
+      }
+      const enc = new SnapshotEncoder(format);
+      const dec = new SnapshotDecoder(format);
+      const inFlight: Array<{ frame: QuantizedFrame; s: EncodedSnapshot }> = [];
+      let totalBytes = 0;
+      for (let t = 1; t <= 240; t++) {
+        world.stepFixed();
+        if (t % 20 === 0) world.addSphere(0.4, { x: 0, y: 10, z: 0 }, {});
+        if (t % 30 === 0) world.removeBody(world.bodyIds().find((id) => id > 5)!);
+        const frame = quantizeFrame(format, t, world.readBodyStates(), []);
+        const s = enc.encode(frame, (id) => ({ id, shape: world.getBody(id)!.shape!, color: [1, 1, 1], motion: 'dynamic', hidden: false, position: world.getBody(id)!.position(), rotation: world.getBody(id)!.rotation() }));
+        totalBytes += s.bytes.length;
+        inFlight.push({ frame, s });
+        // Six ticks of latency: decode and ack the snapshot sent six ticks ago.
+        if (inFlight.length > 6) {
+          const old = inFlight.shift()!;
+          expect(framesEqual(dec.decode(old.s.bytes).frame, old.frame)).toBe(true);
+          enc.acknowledge(old.frame.tick);
+        }
+      }
+      expect(enc.stats.delta).toBeGreaterThan(200);
+      expect(totalBytes / 240).toBeLessThan(1500);
+    } finally {
+      world.destroy();
+    }
+  });
+});

@@ -1,0 +1,96 @@
+// Tests of client message validation: wrong types, shapes, ranges, NaN and Infinity, oversize and garbage frames all
+// become precise error results (never exceptions), and input commands go through validateInputCommand.
+import { describe, expect, it } from 'vitest';
+import { encodeClientMessage, packValue } from '../../../shared/protocol/codec.ts';
+import { MAX_CLIENT_MESSAGE_BYTES, MAX_INPUT_COMMANDS_PER_MESSAGE } from '../../../shared/protocol/limits.ts';
+import { ClientOpcode, ErrorCode, PROTOCOL_VERSION } from '../../../shared/protocol/opcodes.ts';
+import { checkPlayerName, decodeClientMessage } from '../../../shared/protocol/validation.ts';
+import { Prng } from '../../../shared/sim/prng.ts';
+
+function errorOf(data: unknown): { code: string; error: string } {
+  const r = decodeClientMessage(data);
+  if (r.ok) throw new Error(`expected a rejection, got ${JSON.stringify(r.message)}`);
+  return { code: r.code, error: r.error };
+}
+
+const cmd = [0, 0, 0, 0, 0];
+
+describe('validation', () => {
+  it('rejects text, empty, oversize and non-msgpack frames', () => {
+    expect(errorOf('{"op":1}').code).toBe(ErrorCode.Malformed);
+    expect(errorOf(new Uint8Array(0)).code).toBe(ErrorCode.Malformed);
+    expect(errorOf(new Uint8Array(MAX_CLIENT_MESSAGE_BYTES + 1))).toMatchObject({ code: ErrorCode.Oversize, error: expect.stringMatching(/exceeds the 1024-byte limit/) });
+    expect(errorOf(new Uint8Array([0xc1])).code).toBe(ErrorCode.BadMessage);
+    expect(errorOf(new Uint8Array([0x92, 0x01])).code).toBe(ErrorCode.Malformed);
+    expect(errorOf(new Uint8Array([0x91, 0x05, 0x00])).error).toMatch(/not a msgpack value/);
+    expect(errorOf(12).code).toBe(ErrorCode.Malformed);
+  });
+
+  it('rejects non-arrays, unknown opcodes and wrong arity with the message name', () => {
+    expect(errorOf(packValue({ op: 1 })).error).toMatch(/must be an array/);
+    expect(errorOf(packValue([99])).error).toBe('unknown opcode 99');
+    expect(errorOf(packValue(['hello'])).error).toBe('unknown opcode string');
+    expect(errorOf(packValue([ClientOpcode.Ping])).error).toMatch(/ping must have 1 field/);
+    expect(errorOf(packValue([ClientOpcode.Bye, 'extra'])).error).toMatch(/bye must have 0 field/);
+  });
+
+  it('checks hello: version, name length and characters, room id', () => {
+    expect(errorOf(packValue([ClientOpcode.Hello, '1', 'Ada', null])).error).toMatch(/version/);
+    expect(errorOf(packValue([ClientOpcode.Hello, PROTOCOL_VERSION, '   ', null])).error).toMatch(/name must not be empty/);
+    expect(errorOf(packValue([ClientOpcode.Hello, PROTOCOL_VERSION, 'x'.repeat(33), null])).error).toMatch(/at most 32/);
+    expect(errorOf(packValue([ClientOpcode.Hello, PROTOCOL_VERSION, 'a\u0000b', null])).error).toMatch(/control/);
+    expect(errorOf(packValue([ClientOpcode.Hello, PROTOCOL_VERSION, 'evil\u202e', null])).error).toMatch(/direction-override/);
+    expect(errorOf(packValue([ClientOpcode.Hello, PROTOCOL_VERSION, 7, null])).error).toMatch(/name must be a string, got number/);
+    expect(errorOf(packValue([ClientOpcode.Hello, PROTOCOL_VERSION, 'Ada', '../etc'])).error).toMatch(/room must be/);
+    expect(errorOf(packValue([ClientOpcode.Hello, PROTOCOL_VERSION, 'Ada'])).error).toMatch(/hello must have 3 field/);
+    const ok = decodeClientMessage(packValue([ClientOpcode.Hello, PROTOCOL_VERSION, '  Ada Lovelace ', 'r_1']));
+    expect(ok).toMatchObject({ ok: true, message: { type: 'hello', name: 'Ada Lovelace', room: 'r_1' } });
+    expect(checkPlayerName('Zoë 🚀')).toEqual({ ok: true, name: 'Zoë 🚀' });
+  });
+
+  it('rejects NaN, Infinity, strings and bad shapes in input commands, naming the command and tick', () => {
+    const nan = errorOf(packValue([ClientOpcode.Input, 10, [cmd, [Number.NaN, 0, 0, 0, 0]]]));
+    expect(nan).toEqual({ code: ErrorCode.BadInput, error: 'input.commands[1] (tick 11): moveX must be finite, got NaN' });
+    expect(errorOf(packValue([ClientOpcode.Input, 10, [[0, Infinity, 0, 0, 0]]])).error).toMatch(/moveZ must be finite/);
+    expect(errorOf(packValue([ClientOpcode.Input, 10, [[0, 0, '1', 0, 0]]])).error).toMatch(/yaw must be a finite number/);
+    expect(errorOf(packValue([ClientOpcode.Input, 10, [[0, 0, 0, 0, -1]]])).error).toMatch(/buttons/);
+    expect(errorOf(packValue([ClientOpcode.Input, 10, [[0, 0, 0, 0]]])).error).toMatch(/\[moveX, moveZ, yaw, pitch, buttons\]/);
+    expect(errorOf(packValue([ClientOpcode.Input, 10, []])).error).toMatch(/1\.\.16 commands/);
+    expect(errorOf(packValue([ClientOpcode.Input, 10, Array(MAX_INPUT_COMMANDS_PER_MESSAGE + 1).fill(cmd)])).code).toBe(ErrorCode.BadInput);
+    expect(errorOf(packValue([ClientOpcode.Input, -1, [cmd]])).error).toMatch(/firstTick/);
+    expect(errorOf(packValue([ClientOpcode.Input, 1.5, [cmd]])).error).toMatch(/firstTick/);
+    expect(errorOf(packValue([ClientOpcode.Input, 0xffff_ffff, [cmd, cmd]])).error).toMatch(/past the largest tick/);
+  });
+
+  it('clamps out-of-range input values as validateInputCommand does and counts them', () => {
+    const r = decodeClientMessage(packValue([ClientOpcode.Input, 3, [[500, -500, 70000, 99999, 0xff]]]));
+    expect(r).toEqual({ ok: true, clampedCommands: 1, message: { type: 'input', firstTick: 3, commands: [{ moveX: 127, moveZ: -127, yaw: 70000 - 65536, pitch: 16384, buttons: 15 }] } });
+  });
+
+  it('checks ack ticks and ping times', () => {
+    expect(errorOf(packValue([ClientOpcode.SnapshotAck, -3])).error).toMatch(/ack.tick/);
+    expect(errorOf(packValue([ClientOpcode.SnapshotAck, 2 ** 33])).error).toMatch(/ack.tick/);
+    expect(errorOf(packValue([ClientOpcode.Ping, Number.POSITIVE_INFINITY])).error).toMatch(/clientTimeMs/);
+    expect(errorOf(packValue([ClientOpcode.Ping, null])).error).toMatch(/clientTimeMs/);
+  });
+
+  it('never throws on random garbage and random mutations of valid frames', () => {
+    const rng = new Prng(13);
+    const valid = encodeClientMessage({ type: 'input', firstTick: 77, commands: [{ moveX: 1, moveZ: 2, yaw: 3, pitch: 4, buttons: 1 }] });
+    let accepted = 0;
+    for (let i = 0; i < 5000; i++) {
+      let bytes: Uint8Array;
+      if (i % 2 === 0) {
+        bytes = new Uint8Array(rng.int(1, 64));
+        for (let k = 0; k < bytes.length; k++) bytes[k] = rng.int(0, 255);
+      } else {
+        bytes = valid.slice();
+        bytes[rng.int(0, bytes.length - 1)] = rng.int(0, 255);
+      }
+      const r = decodeClientMessage(bytes);
+      if (r.ok) accepted++;
+      else expect(typeof r.error).toBe('string');
+    }
+    expect(accepted).toBeLessThan(5000);
+  });
+});
