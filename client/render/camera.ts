@@ -1,16 +1,12 @@
 // Cameras: a third-person camera that trails the player's character, and an orbit camera for spectators.
 // Both produce a CameraView; they hold only view state (angles, distances), never game state.
+import { forwardFromYaw } from '../../shared/sim/controls.ts';
 import type { Vec3 } from './mat4.ts';
 import type { CameraView } from './renderer.ts';
 
 const FOV_Y_RADIANS = (60 * Math.PI) / 180;
 const NEAR_METRES = 0.1;
 const FAR_METRES = 600;
-
-/** The horizontal unit vector a yaw (radians, the input command's convention) faces: yaw 0 = −Z, π/2 = −X. */
-export function forwardFromYaw(yawRadians: number): Vec3 {
-  return [-Math.sin(yawRadians), 0, -Math.cos(yawRadians)];
-}
 
 /** Trails a target from behind and above, looking where the player looks. */
 export class FollowCamera {
@@ -30,9 +26,10 @@ export class FollowCamera {
     }
     const t = this.smoothed;
     const pitch = Math.max(-1.2, Math.min(1.2, pitchRadians));
+    // The simulation's convention (shared/sim/controls.ts): yaw 0 faces −Z, growing counter-clockwise from above.
     const f = forwardFromYaw(yawRadians);
     const cosP = Math.cos(pitch);
-    const dir: Vec3 = [f[0] * cosP, Math.sin(pitch), f[2] * cosP];
+    const dir: Vec3 = [f.x * cosP, Math.sin(pitch), f.z * cosP];
     const eye: Vec3 = [t[0] - dir[0] * this.distanceMetres, Math.max(t[1] - dir[1] * this.distanceMetres, t[1] - 1.2), t[2] - dir[2] * this.distanceMetres];
     const look: Vec3 = [t[0] + dir[0] * 4, t[1] + dir[1] * 4, t[2] + dir[2] * 4];
     return { eye, target: look, fovYRadians: FOV_Y_RADIANS, nearMetres: NEAR_METRES, farMetres: FAR_METRES };

@@ -1,0 +1,153 @@
+// The per-frame loop of a joined room: interpolated view → world → camera → render, input at 60 Hz, HUD and the
+// test hook's state. Owns the frame timer and the cameras; the session owns the network.
+import { FollowCamera, OrbitCamera } from '../render/camera.ts';
+import type { CameraView } from '../render/renderer.ts';
+import type { Renderer } from '../render/renderer.ts';
+import { FrameTimer } from './frame-timer.ts';
+import type { Hud } from './hud.ts';
+import type { InputController } from './input-controller.ts';
+import { NetHistory } from './net-history.ts';
+import type { NetSession, SessionWelcome } from './session-types.ts';
+import type { HookBody, HookCharacter } from './test-hook.ts';
+import type { WorldView } from './world-view.ts';
+
+/** What the loop reports to the page each frame (and the test hook reads). */
+export interface LoopState {
+  framesRendered: number;
+  firstFrameMs: number | null;
+  renderTick: number;
+  bufferDepth: number;
+  delayMs: number;
+  bodies: HookBody[];
+  characters: HookCharacter[];
+  /** True while the follow camera tracks our character. */
+  following: boolean;
+}
+
+/** Runs frames until stop(). */
+export class GameLoop {
+  readonly timer = new FrameTimer();
+  readonly history: NetHistory;
+  readonly state: LoopState = { framesRendered: 0, firstFrameMs: null, renderTick: 0, bufferDepth: 0, delayMs: 0, bodies: [], characters: [], following: false };
+  /** Force the orbit camera even when we have a character (V toggles it). */
+  orbitOnly = false;
+
+  private readonly renderer: Renderer;
+  private readonly world: WorldView;
+  private readonly session: NetSession;
+  private readonly input: InputController;
+  private readonly hud: Hud;
+  private readonly welcome: SessionWelcome;
+  private readonly follow = new FollowCamera();
+  private readonly orbit = new OrbitCamera();
+  private rafId = 0;
+  private inputTimer: ReturnType<typeof setInterval> | null = null;
+  private lastFrameMs: number | null = null;
+  private stopped = false;
+  private readonly onFatal: (err: Error) => void;
+
+  constructor(parts: { renderer: Renderer; world: WorldView; session: NetSession; input: InputController; hud: Hud; welcome: SessionWelcome; onFatal: (err: Error) => void }) {
+    this.renderer = parts.renderer;
+    this.world = parts.world;
+    this.session = parts.session;
+    this.input = parts.input;
+    this.hud = parts.hud;
+    this.welcome = parts.welcome;
+    this.onFatal = parts.onFatal;
+    this.history = new NetHistory(parts.welcome.tickRateHz);
+    const b = parts.welcome.scenario.bounds;
+    this.orbit.frame([b.min.x, b.min.y, b.min.z], [b.max.x, b.max.y, b.max.z]);
+  }
+
+  /** Starts rendering and sending input at the tick rate. */
+  start(): void {
+    this.rafId = requestAnimationFrame((t) => this.frame(t));
+    const intervalMs = 1000 / this.welcome.tickRateHz;
+    this.inputTimer = setInterval(() => this.session.setInput(this.input.sample()), intervalMs);
+  }
+
+  /** Stops the loop (the last frame stays on screen). */
+  stop(): void {
+    this.stopped = true;
+    cancelAnimationFrame(this.rafId);
+    if (this.inputTimer !== null) clearInterval(this.inputTimer);
+    this.inputTimer = null;
+  }
+
+  /** Turns the orbit camera by a drag (spectating). */
+  orbitDrag(dxPx: number, dyPx: number): void {
+    this.orbit.drag(dxPx, dyPx);
+  }
+
+  /** Zooms the orbit camera. */
+  orbitZoom(deltaY: number): void {
+    this.orbit.zoom(deltaY);
+  }
+
+  private frame(rafMs: number): void {
+    if (this.stopped) return;
+    this.rafId = requestAnimationFrame((t) => this.frame(t));
+    const cpuStart = performance.now();
+    const dtSeconds = this.lastFrameMs === null ? 0 : Math.max(0, (rafMs - this.lastFrameMs) / 1000);
+    this.lastFrameMs = rafMs;
+    try {
+      this.draw(cpuStart, dtSeconds);
+    } catch (err) {
+      this.stop();
+      this.onFatal(err as Error);
+      return;
+    }
+    this.timer.record(cpuStart, performance.now() - cpuStart);
+  }
+
+  private draw(nowMs: number, dt: number): void {
+    const f = this.session.frame(nowMs);
+    this.world.apply(f.view, f.renderTick);
+    this.history.recordBufferDepth(nowMs, f.bufferDepth);
+    const s = this.state;
+    s.renderTick = f.renderTick;
+    s.bufferDepth = f.bufferDepth;
+    s.delayMs = f.delayMs;
+    s.bodies = [];
+    s.characters = [];
+    let mine: HookCharacter | null = null;
+    if (f.view) {
+      const v = f.view;
+      for (let i = 0; i < v.ids.length; i++) {
+        s.bodies.push({ id: v.ids[i], position: [v.positions[i * 3], v.positions[i * 3 + 1], v.positions[i * 3 + 2]], rotation: [v.rotations[i * 4], v.rotations[i * 4 + 1], v.rotations[i * 4 + 2], v.rotations[i * 4 + 3]] });
+      }
+      for (const c of v.characters) {
+        const hc: HookCharacter = { playerId: c.playerId, bodyId: c.bodyId, position: [c.position.x, c.position.y, c.position.z] };
+        s.characters.push(hc);
+        if (c.playerId === this.welcome.playerId) mine = hc;
+      }
+    }
+    let camera: CameraView;
+    if (mine && !this.orbitOnly) {
+      camera = this.follow.view(mine.position, this.input.yawRadians, this.input.pitchRadians, dt);
+      s.following = true;
+    } else {
+      if (s.following) this.follow.reset();
+      camera = this.orbit.view(dt);
+      s.following = false;
+    }
+    this.input.captureOnClick = s.following;
+    const stats = this.renderer.render(camera);
+    s.framesRendered++;
+    if (s.firstFrameMs === null && f.view) s.firstFrameMs = performance.now();
+    const timing = this.timer.summary();
+    this.hud.refresh(nowMs, {
+      room: `${this.welcome.roomId} (${this.welcome.scenario.name})`,
+      playerId: mine ? this.welcome.playerId : null,
+      serverTick: this.session.serverTick,
+      rttMs: this.session.rttMs,
+      snapshotsPerSecond: this.history.snapshotsPerSecond(nowMs),
+      kbpsIn: this.history.kbpsIn(nowMs),
+      interpolationDelayMs: f.delayMs,
+      bufferDepth: f.bufferDepth,
+      bodies: stats.instances,
+      fps: timing.fps,
+      frameMs: timing.meanCpuMs,
+    }, this.history);
+  }
+}

@@ -1,0 +1,99 @@
+// The heads-up display: server tick, RTT, snapshot rate, kbps in, interpolation delay, bodies, FPS, the net graph,
+// and the event feed. DOM text only (never HTML from the network); refreshed a few times a second, not every frame.
+import { drawNetGraph } from './net-graph.ts';
+import type { NetHistory } from './net-history.ts';
+
+/** The numbers the HUD shows. */
+export interface HudValues {
+  serverTick: number;
+  rttMs: number | null;
+  snapshotsPerSecond: number;
+  kbpsIn: number;
+  interpolationDelayMs: number;
+  bufferDepth: number;
+  bodies: number;
+  fps: number;
+  frameMs: number;
+  playerId: number | null;
+  room: string;
+}
+
+const ROWS: ReadonlyArray<[keyof HudValues, string, (v: HudValues) => string]> = [
+  ['room', 'room', (v) => v.room],
+  ['playerId', 'player', (v) => (v.playerId === null ? 'spectating' : `#${v.playerId}`)],
+  ['serverTick', 'server tick', (v) => String(v.serverTick)],
+  ['rttMs', 'RTT', (v) => (v.rttMs === null ? '…' : `${v.rttMs.toFixed(0)} ms`)],
+  ['snapshotsPerSecond', 'snapshots', (v) => `${v.snapshotsPerSecond.toFixed(0)} /s`],
+  ['kbpsIn', 'in', (v) => `${v.kbpsIn.toFixed(1)} kbps`],
+  ['interpolationDelayMs', 'interp delay', (v) => `${v.interpolationDelayMs.toFixed(0)} ms (${v.bufferDepth} ahead)`],
+  ['bodies', 'bodies', (v) => String(v.bodies)],
+  ['fps', 'FPS', (v) => `${v.fps.toFixed(0)} (${v.frameMs.toFixed(1)} ms)`],
+];
+
+const FEED_LINES = 6;
+
+/** Owns the #hud, #netgraph and #feed elements' contents. */
+export class Hud {
+  private readonly root: HTMLElement;
+  private readonly cells = new Map<string, HTMLElement>();
+  private readonly graph: HTMLCanvasElement;
+  private readonly feed: HTMLElement;
+  private readonly lines: string[] = [];
+  private lastRefreshMs = -Infinity;
+
+  constructor(root: HTMLElement, feed: HTMLElement) {
+    this.root = root;
+    this.feed = feed;
+    root.replaceChildren();
+    for (const [key, label] of ROWS) {
+      const row = document.createElement('div');
+      row.className = 'row';
+      const name = document.createElement('span');
+      name.textContent = label;
+      const value = document.createElement('span');
+      value.dataset.field = key;
+      row.append(name, value);
+      root.append(row);
+      this.cells.set(key, value);
+    }
+    this.graph = document.createElement('canvas');
+    this.graph.id = 'netgraph';
+    this.graph.title = 'snapshot arrival jitter (bars) and interpolation buffer depth (line), last 5 s';
+    root.append(this.graph);
+  }
+
+  /** Shows or hides the HUD and feed. */
+  set visible(on: boolean) {
+    this.root.hidden = !on;
+    this.feed.hidden = !on;
+  }
+
+  /** Updates the numbers and the graph, at most every `intervalMs`. */
+  refresh(nowMs: number, values: HudValues, history: NetHistory, intervalMs = 250): void {
+    if (nowMs - this.lastRefreshMs < intervalMs) return;
+    this.lastRefreshMs = nowMs;
+    for (const [key, , format] of ROWS) {
+      const cell = this.cells.get(key);
+      if (cell) cell.textContent = format(values);
+    }
+    drawNetGraph(this.graph, history, nowMs);
+  }
+
+  /** Adds a line to the event feed (newest last). */
+  log(line: string): void {
+    this.lines.push(line);
+    if (this.lines.length > FEED_LINES) this.lines.splice(0, this.lines.length - FEED_LINES);
+    this.feed.replaceChildren(
+      ...this.lines.map((l) => {
+        const div = document.createElement('div');
+        div.textContent = l;
+        return div;
+      }),
+    );
+  }
+
+  /** The feed's current lines. */
+  feedLines(): string[] {
+    return [...this.lines];
+  }
+}

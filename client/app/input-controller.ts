@@ -1,0 +1,167 @@
+// Keyboard and mouse → InputCommand: WASD/arrows move, mouse (pointer lock) looks, space jumps, click fires,
+// shift sprints, E uses. Keeps look angles locally (the camera reads them) and latches short presses for one tick.
+import { Button, quantizeInput, type InputCommand } from '../../shared/sim/input.ts';
+
+/** Radians of turn per pixel of mouse movement. */
+const MOUSE_RADIANS_PER_PX = 0.0025;
+const MAX_PITCH_RADIANS = 1.45;
+const TWO_PI = Math.PI * 2;
+
+const MOVE_KEYS: Readonly<Record<string, [number, number]>> = {
+  KeyW: [0, 1],
+  ArrowUp: [0, 1],
+  KeyS: [0, -1],
+  ArrowDown: [0, -1],
+  KeyA: [-1, 0],
+  ArrowLeft: [-1, 0],
+  KeyD: [1, 0],
+  ArrowRight: [1, 0],
+};
+
+const BUTTON_KEYS: Readonly<Record<string, number>> = {
+  Space: Button.Jump,
+  ShiftLeft: Button.Sprint,
+  ShiftRight: Button.Sprint,
+  KeyE: Button.Use,
+};
+
+/** Turns DOM input on `element` (the canvas) into commands; attach() to listen, detach() to stop. */
+export class InputController {
+  /** Look direction in the simulation's convention (0 faces −Z, counter-clockwise from above). */
+  yawRadians = 0;
+  /** Positive looks up. */
+  pitchRadians = -0.15;
+  /** Whether keys are read at all (false while a menu or message has focus). */
+  enabled = true;
+  /** Whether a click captures the mouse (false while the orbit camera is in use: there a drag turns the view). */
+  captureOnClick = true;
+
+  private readonly element: HTMLElement;
+  private readonly keys = new Set<string>();
+  private held = 0;
+  private latched = 0;
+  /** The browser refused pointer lock: clicks fire without it and a right-drag looks. */
+  private lockRefused = false;
+  private readonly listeners: Array<[EventTarget, string, EventListener]> = [];
+
+  constructor(element: HTMLElement) {
+    this.element = element;
+  }
+
+  /** Whether the mouse is captured for looking. */
+  get pointerLocked(): boolean {
+    return document.pointerLockElement === this.element;
+  }
+
+  /** Starts listening to the keyboard, the mouse and focus changes. */
+  attach(): void {
+    if (this.listeners.length > 0) return;
+    this.listen(window, 'keydown', (e) => this.onKey(e as KeyboardEvent, true));
+    this.listen(window, 'keyup', (e) => this.onKey(e as KeyboardEvent, false));
+    this.listen(window, 'blur', () => this.releaseAll());
+    this.listen(document, 'visibilitychange', () => {
+      if (document.hidden) this.releaseAll();
+    });
+    this.listen(this.element, 'mousedown', (e) => this.onMouseDown(e as MouseEvent));
+    this.listen(window, 'mouseup', (e) => {
+      if ((e as MouseEvent).button === 0) this.held &= ~Button.Fire;
+    });
+    this.listen(document, 'mousemove', (e) => {
+      const m = e as MouseEvent;
+      // Pointer lock looks freely; without it (refused, or not yet clicked) a right-button drag looks.
+      if (this.pointerLocked || (m.buttons & 2) !== 0) this.look(m.movementX, m.movementY);
+    });
+    this.listen(this.element, 'contextmenu', (e) => e.preventDefault());
+  }
+
+  /** Stops listening and releases everything held. */
+  detach(): void {
+    for (const [target, type, fn] of this.listeners) target.removeEventListener(type, fn);
+    this.listeners.length = 0;
+    this.releaseAll();
+    if (this.pointerLocked) document.exitPointerLock();
+  }
+
+  /** Turns the view by a mouse movement in pixels (right turns right, up looks up). */
+  look(dxPx: number, dyPx: number): void {
+    if (!Number.isFinite(dxPx) || !Number.isFinite(dyPx)) return;
+    this.yawRadians = (((this.yawRadians - dxPx * MOUSE_RADIANS_PER_PX) % TWO_PI) + TWO_PI) % TWO_PI;
+    this.pitchRadians = Math.max(-MAX_PITCH_RADIANS, Math.min(MAX_PITCH_RADIANS, this.pitchRadians - dyPx * MOUSE_RADIANS_PER_PX));
+  }
+
+  /** Move axes in [-1, 1] from the keys held now: x strafes right, z walks forward. */
+  moveAxes(): { x: number; z: number } {
+    let x = 0;
+    let z = 0;
+    for (const code of this.keys) {
+      const m = MOVE_KEYS[code];
+      if (m) {
+        x += m[0];
+        z += m[1];
+      }
+    }
+    return { x: Math.max(-1, Math.min(1, x)), z: Math.max(-1, Math.min(1, z)) };
+  }
+
+  /** The command for the next tick; presses shorter than a tick still count once. */
+  sample(): InputCommand {
+    const buttons = this.enabled ? this.held | this.latched : 0;
+    this.latched = 0;
+    const move = this.enabled ? this.moveAxes() : { x: 0, z: 0 };
+    return quantizeInput(move.x, move.z, this.yawRadians, this.pitchRadians, buttons);
+  }
+
+  private listen(target: EventTarget, type: string, fn: EventListener): void {
+    target.addEventListener(type, fn);
+    this.listeners.push([target, type, fn]);
+  }
+
+  private onKey(e: KeyboardEvent, down: boolean): void {
+    if (!this.enabled || e.ctrlKey || e.metaKey || e.altKey) return;
+    const target = e.target as HTMLElement | null;
+    if (target && (target.tagName === 'INPUT' || target.tagName === 'TEXTAREA' || target.isContentEditable)) return;
+    const isMove = e.code in MOVE_KEYS;
+    const bit = BUTTON_KEYS[e.code] ?? 0;
+    if (!isMove && bit === 0) return;
+    e.preventDefault();
+    if (isMove) {
+      if (down) this.keys.add(e.code);
+      else this.keys.delete(e.code);
+    }
+    if (bit) {
+      if (down) {
+        this.held |= bit;
+        this.latched |= bit;
+      } else {
+        // Sprint stays held while either shift key is down.
+        if (bit !== Button.Sprint || !this.keys.has(e.code === 'ShiftLeft' ? 'ShiftRight' : 'ShiftLeft')) this.held &= ~bit;
+      }
+      if (bit === Button.Sprint) {
+        if (down) this.keys.add(e.code);
+        else this.keys.delete(e.code);
+      }
+    }
+  }
+
+  private onMouseDown(e: MouseEvent): void {
+    if (!this.enabled || e.button !== 0) return;
+    if (!this.pointerLocked && !this.lockRefused) {
+      if (!this.captureOnClick) return;
+      // The first click captures the mouse for looking; it does not fire.
+      try {
+        const request = this.element.requestPointerLock() as unknown;
+        if (request instanceof Promise) request.catch(() => (this.lockRefused = true));
+      } catch {
+        this.lockRefused = true;
+      }
+      return;
+    }
+    this.held |= Button.Fire;
+    this.latched |= Button.Fire;
+  }
+
+  private releaseAll(): void {
+    this.keys.clear();
+    this.held = 0;
+  }
+}

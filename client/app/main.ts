@@ -1,0 +1,188 @@
+// The page's entry point: starts WebGPU, shows the start screen (or joins ?room=ID directly), connects, and runs the
+// game loop; every failure ends in a clear message (no WebGPU, server unreachable, refused, closed).
+import { WebGpuUnavailableError } from '../render/gpu-context.ts';
+import { Renderer } from '../render/renderer.ts';
+import { GameLoop } from './game-loop.ts';
+import { Hud } from './hud.ts';
+import { InputController } from './input-controller.ts';
+import { hideMessage, showMessage } from './overlay.ts';
+import { openSession } from './session.ts';
+import type { NetSession, SessionWelcome } from './session-types.ts';
+import { fetchLobby, showStartScreen } from './start-screen.ts';
+import { installTestHook, type TaosState } from './test-hook.ts';
+import { WorldView } from './world-view.ts';
+
+const byId = <T extends HTMLElement>(id: string): T => {
+  const e = document.getElementById(id);
+  if (!e) throw new Error(`page is missing #${id}`);
+  return e as T;
+};
+
+/** Page-wide state the test hook reads. */
+const page = {
+  phase: 'start' as string,
+  connected: false,
+  welcome: null as SessionWelcome | null,
+  error: null as string | null,
+  renderer: null as Renderer | null,
+  session: null as NetSession | null,
+  loop: null as GameLoop | null,
+  world: null as WorldView | null,
+  hud: null as Hud | null,
+};
+
+function hookState(): TaosState {
+  const loop = page.loop;
+  const s = loop?.state;
+  const now = performance.now();
+  return {
+    page: page.phase,
+    connected: page.connected,
+    playerId: page.welcome?.playerId ?? null,
+    roomId: page.welcome?.roomId ?? null,
+    scenario: page.welcome?.scenario.name ?? null,
+    serverTick: page.session?.serverTick ?? 0,
+    renderTick: s?.renderTick ?? 0,
+    framesRendered: s?.framesRendered ?? 0,
+    firstFrameMs: s?.firstFrameMs ?? null,
+    frameTiming: loop ? loop.timer.summary() : { frames: 0, fps: 0, meanIntervalMs: 0, p50IntervalMs: 0, p95IntervalMs: 0, meanCpuMs: 0, p95CpuMs: 0 },
+    adapter: page.renderer?.adapter ?? null,
+    error: page.error,
+    bodies: s ? s.bodies : [],
+    characters: s ? s.characters : [],
+    sensors: page.world?.sensors() ?? [],
+    events: page.hud?.feedLines() ?? [],
+    net: {
+      rttMs: page.session?.rttMs ?? 0,
+      snapshotsPerSecond: loop ? loop.history.snapshotsPerSecond(now) : 0,
+      kbpsIn: loop ? loop.history.kbpsIn(now) : 0,
+      interpolationDelayMs: s?.delayMs ?? 0,
+      bufferDepth: s?.bufferDepth ?? 0,
+    },
+  };
+}
+
+function fail(title: string, detail: string, action?: { label: string; run: () => void }): void {
+  page.phase = 'error';
+  page.error = `${title}: ${detail}`;
+  showMessage(title, detail, 'error', action);
+}
+
+const reload = { label: 'Try again', run: () => location.reload() };
+
+async function boot(): Promise<void> {
+  installTestHook(hookState);
+  const canvas = byId<HTMLCanvasElement>('scene');
+  try {
+    page.renderer = await Renderer.create(canvas);
+  } catch (err) {
+    if (err instanceof WebGpuUnavailableError) fail('WebGPU is not available', err.message);
+    else fail('The renderer failed to start', (err as Error).message);
+    return;
+  }
+  page.renderer.lost.then((reason) => {
+    if (page.phase !== 'closed') fail('The GPU device was lost', `${reason}. Reload the page to start again.`, reload);
+    page.loop?.stop();
+  });
+
+  const params = new URLSearchParams(location.search);
+  let room = params.get('room');
+  if (room === null) {
+    let lobby;
+    try {
+      lobby = await fetchLobby(location.origin);
+    } catch (err) {
+      fail('Server unreachable', (err as Error).message, reload);
+      return;
+    }
+    room = (await showStartScreen(byId('start'), lobby)).room;
+  }
+  join(room, params.get('name') ?? `player-${Math.floor(Math.random() * 9000 + 1000)}`);
+}
+
+function join(room: string | null, name: string): void {
+  const renderer = page.renderer!;
+  page.phase = 'connecting';
+  showMessage('Connecting…', room ? `Joining room ${room}` : 'Joining the default room', 'info');
+  const hud = new Hud(byId('hud'), byId('feed'));
+  page.hud = hud;
+  const world = new WorldView(renderer, (line) => hud.log(line));
+  page.world = world;
+  const input = new InputController(byId('scene'));
+  const wsUrl = `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/`;
+
+  page.session = openSession(wsUrl, { name, room }, {
+    onWelcome(welcome) {
+      page.welcome = welcome;
+      page.connected = true;
+      page.phase = 'playing';
+      page.error = null;
+      hideMessage();
+      world.reset(welcome.staticBodies, welcome.dynamicBodies);
+      page.loop?.stop();
+      const loop = new GameLoop({ renderer, world, session: page.session!, input, hud, welcome, onFatal: (err) => fail('Rendering failed', err.message, reload) });
+      page.loop = loop;
+      hud.visible = true;
+      byId('help').hidden = false;
+      byId('crosshair').hidden = false;
+      hud.log(`joined ${welcome.roomId} (${welcome.scenario.name}) as #${welcome.playerId}`);
+      input.attach();
+      loop.start();
+    },
+    onSnapshot(tick, sizeBytes, descriptors) {
+      const now = performance.now();
+      page.loop?.history.recordSnapshot(now, tick);
+      page.loop?.history.recordBytes(now, sizeBytes);
+      world.addDescriptors(tick, descriptors);
+    },
+    onEvents(events) {
+      world.queueEvents(events);
+    },
+    onReconnecting(attempt, reason) {
+      page.connected = false;
+      page.phase = 'connecting';
+      showMessage('Connection lost', `${reason}\nReconnecting (attempt ${attempt})…`, 'info');
+    },
+    onClosed(reason, detail) {
+      page.connected = false;
+      page.loop?.stop();
+      input.detach();
+      fail(closedTitle(reason), detail, reload);
+      page.phase = 'closed';
+    },
+  });
+  bindKeys(input);
+}
+
+function closedTitle(reason: string): string {
+  if (reason === 'unreachable') return 'Server unreachable';
+  if (reason === 'room-not-found') return 'No such room';
+  if (reason === 'room-full' || reason === 'server-full') return 'The room is full';
+  if (reason === 'server-shutdown') return 'The server shut down';
+  return 'Disconnected';
+}
+
+function bindKeys(input: InputController): void {
+  window.addEventListener('keydown', (e) => {
+    if (e.code === 'KeyH') {
+      const hud = byId('hud');
+      const on = hud.hidden;
+      if (page.hud) page.hud.visible = on;
+      byId('help').hidden = !on;
+    } else if (e.code === 'KeyV' && page.loop) {
+      page.loop.orbitOnly = !page.loop.orbitOnly;
+    }
+  });
+  const canvas = byId<HTMLCanvasElement>('scene');
+  // Spectating (orbit camera): drag to turn, wheel to zoom.
+  canvas.addEventListener('mousemove', (e) => {
+    if (page.loop && !page.loop.state.following && (e.buttons & 1) !== 0 && !input.pointerLocked) page.loop.orbitDrag(e.movementX, e.movementY);
+  });
+  canvas.addEventListener('wheel', (e) => page.loop?.orbitZoom(e.deltaY), { passive: true });
+  window.addEventListener('pagehide', () => page.session?.close());
+}
+
+boot().catch((err: unknown) => {
+  console.error(err);
+  fail('The client failed to start', (err as Error).message, reload);
+});

@@ -1,0 +1,54 @@
+// What the page needs from a network session, independent of how the client library spells it: the welcome,
+// interpolated views per frame, descriptors and events as they arrive, stats, input, and how the session ended.
+import type { SnapshotView } from '../../shared/protocol/snapshot-frame.ts';
+import type { ScenarioInfo } from '../../shared/protocol/server-messages.ts';
+import type { InputCommand } from '../../shared/sim/input.ts';
+import type { BodyDescriptor, SimEvent } from '../../shared/sim/types.ts';
+
+/** The welcome, as the page uses it. */
+export interface SessionWelcome {
+  playerId: number;
+  roomId: string;
+  tick: number;
+  tickRateHz: number;
+  snapshotRateHz: number;
+  scenario: ScenarioInfo;
+  staticBodies: BodyDescriptor[];
+  dynamicBodies: BodyDescriptor[];
+}
+
+/** The interpolated world for one frame. */
+export interface SessionFrame {
+  view: SnapshotView | null;
+  /** The (fractional) tick being shown. */
+  renderTick: number;
+  /** Snapshots buffered ahead of the render time. */
+  bufferDepth: number;
+  /** How far behind the estimated server time the render time is (ms). */
+  delayMs: number;
+}
+
+/** Callbacks a session calls as things arrive. */
+export interface SessionHandlers {
+  onWelcome(welcome: SessionWelcome): void;
+  /** A snapshot was decoded (its tick, its size on the wire, descriptors of spawned bodies it carried). */
+  onSnapshot(tick: number, sizeBytes: number, descriptors: readonly BodyDescriptor[]): void;
+  onEvents(events: readonly SimEvent[]): void;
+  /** The connection dropped and the library is trying again (attempt counts from 1). */
+  onReconnecting(attempt: number, reason: string): void;
+  /** The session is over for good (server bye, refused, unreachable, or our own close). */
+  onClosed(reason: string, detail: string): void;
+}
+
+/** A live connection to one room. */
+export interface NetSession {
+  /** Latest server tick heard of. */
+  readonly serverTick: number;
+  /** Round-trip time (ms), null before the first pong. */
+  readonly rttMs: number | null;
+  /** The interpolated world at `nowMs` (performance.now() clock). */
+  frame(nowMs: number): SessionFrame;
+  /** The command to send for the coming ticks (the library sends at 60 Hz). */
+  setInput(cmd: InputCommand): void;
+  close(): void;
+}

@@ -1,0 +1,67 @@
+// The read-only test hook `window.__taos`: every read returns a fresh, frozen snapshot of the page's state, so
+// browser tests can observe the client but never change it.
+import type { AdapterSummary } from '../render/gpu-context.ts';
+import type { FrameTimingSummary } from './frame-timer.ts';
+
+/** A body as drawn this frame (interpolated pose). */
+export interface HookBody {
+  id: number;
+  position: [number, number, number];
+  rotation: [number, number, number, number];
+}
+
+/** A character as drawn this frame. */
+export interface HookCharacter {
+  playerId: number;
+  bodyId: number;
+  /** Feet position (m), interpolated. */
+  position: [number, number, number];
+}
+
+/** Everything the hook exposes. */
+export interface TaosState {
+  /** 'start' | 'connecting' | 'playing' | 'spectating' | 'closed' | 'error' | 'gallery'. */
+  page: string;
+  connected: boolean;
+  playerId: number | null;
+  roomId: string | null;
+  scenario: string | null;
+  /** Latest server tick received. */
+  serverTick: number;
+  /** Tick being drawn (fractional: interpolated). */
+  renderTick: number;
+  framesRendered: number;
+  /** Milliseconds from navigation start to the first frame with the world in it. */
+  firstFrameMs: number | null;
+  frameTiming: FrameTimingSummary;
+  adapter: AdapterSummary | null;
+  /** The message shown to the user when something failed. */
+  error: string | null;
+  bodies: HookBody[];
+  characters: HookCharacter[];
+  /** Sensor bodies and whether something is inside each. */
+  sensors: Array<{ sensorId: number; occupied: boolean }>;
+  /** Recent event lines as shown in the feed. */
+  events: string[];
+  net: { rttMs: number; snapshotsPerSecond: number; kbpsIn: number; interpolationDelayMs: number; bufferDepth: number };
+}
+
+function deepFreeze<T>(value: T): T {
+  if (value && typeof value === 'object' && !Object.isFrozen(value)) {
+    Object.freeze(value);
+    for (const v of Object.values(value as Record<string, unknown>)) deepFreeze(v);
+  }
+  return value;
+}
+
+/** Installs `window.__taos` reading from `read` (called on every access). */
+export function installTestHook(read: () => TaosState): void {
+  Object.defineProperty(globalThis, '__taos', {
+    configurable: true,
+    enumerable: false,
+    get: () => deepFreeze(read()),
+    set: () => {
+      throw new Error('window.__taos is read-only');
+    },
+  });
+}

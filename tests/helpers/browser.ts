@@ -1,0 +1,195 @@
+// Browser-test helpers: headless Debian Chromium with WebGPU on SwiftShader (flags from shared/notes/browser.md),
+// a loopback static server for the built client, console-error capture and in-page decoding of canvas screenshots.
+import { existsSync } from 'node:fs';
+import { mkdtemp, rm } from 'node:fs/promises';
+import { createServer, type Server } from 'node:http';
+import type { AddressInfo } from 'node:net';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { chromium, type BrowserContext, type Page } from 'playwright-core';
+import { describe, it } from 'vitest';
+import { createStaticHandler } from '../../server/static-files.ts';
+
+/** Where the browser is looked for (override with CHROMIUM_PATH). */
+export const CHROMIUM_PATH = process.env.CHROMIUM_PATH ?? '/usr/bin/chromium';
+
+/** Flags that give a presenting WebGPU canvas on SwiftShader and keep Chromium off the network. */
+export const CHROMIUM_FLAGS: readonly string[] = [
+  '--headless=new',
+  '--no-sandbox',
+  '--disable-gpu-sandbox',
+  '--no-first-run',
+  '--disable-quic',
+  '--disable-background-networking',
+  '--disable-component-update',
+  '--disable-sync',
+  '--enable-unsafe-webgpu',
+  '--use-angle=swiftshader',
+  '--enable-features=Vulkan',
+  '--use-vulkan=swiftshader',
+];
+
+/** Test viewport: software WebGPU is slow, keep it small. */
+export const VIEWPORT = { width: 640, height: 360 } as const;
+
+/** Why browser tests cannot run here, or null when they can. */
+export function browserMissingReason(): string | null {
+  if (!existsSync(CHROMIUM_PATH)) return `Chromium not found at ${CHROMIUM_PATH} (install Debian's chromium: apt-get install -y chromium, or set CHROMIUM_PATH)`;
+  return null;
+}
+
+/**
+ * A describe block for browser tests: runs when Chromium is present; without it, fails under CI=true and is skipped
+ * with a clear message otherwise.
+ */
+export function describeBrowser(name: string, body: () => void): void {
+  const missing = browserMissingReason();
+  if (!missing) {
+    describe(name, body);
+    return;
+  }
+  if (process.env.CI === 'true') {
+    describe(name, () => {
+      it('needs a browser', () => {
+        throw new Error(`browser tests cannot run: ${missing}; CI=true, so this is a failure, not a skip`);
+      });
+    });
+    return;
+  }
+  console.warn(`[browser tests skipped] ${name}: ${missing}`);
+  describe.skip(name, body);
+}
+
+/** A running Chromium with a throw-away profile. */
+export interface BrowserSession {
+  context: BrowserContext;
+  /** A new page; its console errors and uncaught exceptions are collected in `errors`. */
+  newPage(): Promise<{ page: Page; errors: string[] }>;
+  close(): Promise<void>;
+}
+
+/** Launches Chromium with a fresh user-data-dir (deleted on close). */
+export async function launchBrowser(): Promise<BrowserSession> {
+  const profile = await mkdtemp(join(tmpdir(), 'taos-chromium-'));
+  let context: BrowserContext;
+  try {
+    context = await chromium.launchPersistentContext(profile, {
+      executablePath: CHROMIUM_PATH,
+      headless: true,
+      args: [...CHROMIUM_FLAGS],
+      viewport: { ...VIEWPORT },
+      timeout: 30_000,
+    });
+  } catch (err) {
+    await rm(profile, { recursive: true, force: true });
+    throw err;
+  }
+  return {
+    context,
+    async newPage() {
+      const page = await context.newPage();
+      const errors: string[] = [];
+      page.on('console', (msg) => {
+        if (msg.type() === 'error') errors.push(`console.error: ${msg.text()}`);
+      });
+      page.on('pageerror', (err) => errors.push(`uncaught: ${err.message}`));
+      return { page, errors };
+    },
+    async close() {
+      await context.close().catch(() => undefined);
+      await rm(profile, { recursive: true, force: true });
+    },
+  };
+}
+
+/** Serves a directory on 127.0.0.1 (a secure context for WebGPU) at an ephemeral port. */
+export async function serveDirectory(dir: string): Promise<{ url: string; close: () => Promise<void> }> {
+  const handler = createStaticHandler(dir);
+  const server: Server = createServer((req, res) => {
+    handler(req, res)
+      .then((answered) => {
+        if (!answered) res.writeHead(405).end();
+      })
+      .catch(() => res.writeHead(500).end());
+  });
+  await new Promise<void>((resolve) => server.listen(0, '127.0.0.1', resolve));
+  const { port } = server.address() as AddressInfo;
+  return {
+    url: `http://127.0.0.1:${port}`,
+    close: () => new Promise<void>((resolve) => server.close(() => resolve())),
+  };
+}
+
+/** RGBA pixels of the canvas as presented (a screenshot decoded in the page), downsampled to about `maxWidth`. */
+export interface CanvasPixels {
+  width: number;
+  height: number;
+  /** RGBA bytes, row-major. */
+  rgba: number[];
+}
+
+/** Screenshots the page's canvas after two animation frames and decodes it in the page. */
+export async function canvasPixels(page: Page, selector = 'canvas#scene', maxWidth = 160): Promise<CanvasPixels> {
+  await page.evaluate(() => new Promise<void>((resolve) => requestAnimationFrame(() => requestAnimationFrame(() => resolve()))));
+  const png = await page.locator(selector).screenshot({ type: 'png' });
+  return page.evaluate(
+    async ({ b64, maxW }) => {
+      const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
+      const bitmap = await createImageBitmap(new Blob([bytes], { type: 'image/png' }));
+      const w = Math.min(maxW, bitmap.width);
+      const h = Math.max(1, Math.round((bitmap.height * w) / bitmap.width));
+      const canvas = new OffscreenCanvas(w, h);
+      const ctx = canvas.getContext('2d');
+      if (!ctx) throw new Error('no 2d context for decoding');
+      ctx.imageSmoothingEnabled = false;
+      ctx.drawImage(bitmap, 0, 0, w, h);
+      return { width: w, height: h, rgba: Array.from(ctx.getImageData(0, 0, w, h).data) };
+    },
+    { b64: png.toString('base64'), maxW: maxWidth },
+  );
+}
+
+/** Fraction of pixels that differ from `rgb` by more than `tolerance` on some channel. */
+export function fractionUnlike(px: CanvasPixels, rgb: readonly [number, number, number], tolerance = 12): number {
+  let differ = 0;
+  const n = px.width * px.height;
+  for (let i = 0; i < n; i++) {
+    const o = i * 4;
+    if (Math.abs(px.rgba[o] - rgb[0]) > tolerance || Math.abs(px.rgba[o + 1] - rgb[1]) > tolerance || Math.abs(px.rgba[o + 2] - rgb[2]) > tolerance) differ++;
+  }
+  return differ / n;
+}
+
+/** Fraction of pixels that differ between two same-sized captures by more than `tolerance` on some channel. */
+export function fractionChanged(a: CanvasPixels, b: CanvasPixels, tolerance = 12): number {
+  if (a.width !== b.width || a.height !== b.height) throw new Error(`captures differ in size: ${a.width}×${a.height} vs ${b.width}×${b.height}`);
+  let changed = 0;
+  const n = a.width * a.height;
+  for (let i = 0; i < n * 4; i += 4) {
+    if (Math.abs(a.rgba[i] - b.rgba[i]) > tolerance || Math.abs(a.rgba[i + 1] - b.rgba[i + 1]) > tolerance || Math.abs(a.rgba[i + 2] - b.rgba[i + 2]) > tolerance) changed++;
+  }
+  return changed / n;
+}
+
+/** The most common colour of a capture (the background, in practice). */
+export function dominantColor(px: CanvasPixels): [number, number, number] {
+  const counts = new Map<number, number>();
+  for (let i = 0; i < px.rgba.length; i += 4) {
+    const key = ((px.rgba[i] >> 3) << 10) | ((px.rgba[i + 1] >> 3) << 5) | (px.rgba[i + 2] >> 3);
+    counts.set(key, (counts.get(key) ?? 0) + 1);
+  }
+  let best = 0;
+  let bestCount = -1;
+  for (const [key, count] of counts) {
+    if (count > bestCount) {
+      best = key;
+      bestCount = count;
+    }
+  }
+  return [((best >> 10) & 31) * 8 + 4, ((best >> 5) & 31) * 8 + 4, (best & 31) * 8 + 4];
+}
+
+/** Reads the page's read-only test hook. */
+export async function readHook<T = Record<string, unknown>>(page: Page): Promise<T> {
+  return page.evaluate(() => JSON.parse(JSON.stringify((globalThis as { __taos?: unknown }).__taos ?? null)) as never);
+}
