@@ -3,7 +3,7 @@
 // simple walking characters, spawn/remove/emit bookkeeping and bounds removal. Tests only; not the Simulation.
 import '../../server/physics-node.ts';
 import { CharacterController, CollisionLayer, PhysicsWorld, type BodyHandle, type QuatLike, type ShapeSpec, type Vec3Like } from '../../shared/physics/index.ts';
-import { detCos, detSin } from '../../shared/sim/det-math.ts';
+import { walkVelocity } from '../../shared/sim/controls.ts';
 import { Button, NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input.ts';
 import { Prng } from '../../shared/sim/prng.ts';
 import { resolveParams, type ParamValues, type ScenarioContext, type ScenarioDefinition, type ScenarioInstance, type SpawnOptions } from '../../shared/sim/scenario.ts';
@@ -149,13 +149,9 @@ export class ScenarioHarness {
     this.tickInputs = ordered.map((p) => ({ playerId: p.playerId, input: p.input }));
     const walk = this.def.players?.walkSpeedMetresPerSecond ?? 4;
     for (const p of ordered) {
-      // Yaw 0 faces -z; moveZ > 0 walks forward, moveX > 0 to the right.
-      const yaw = (p.input.yaw / 65536) * 2 * Math.PI;
-      const fwd = p.input.moveZ / 127;
-      const right = p.input.moveX / 127;
-      const speed = walk * (p.input.buttons & Button.Sprint ? 1.8 : 1);
-      p.controller.velocity.x = (right * detCos(yaw) - fwd * detSin(yaw)) * speed;
-      p.controller.velocity.z = (-right * detSin(yaw) - fwd * detCos(yaw)) * speed;
+      const v = walkVelocity(p.input, walk, (p.input.buttons & Button.Sprint) !== 0);
+      p.controller.velocity.x = v.x;
+      p.controller.velocity.z = v.z;
       if (p.input.buttons & Button.Jump) p.controller.jump(this.def.players?.jumpSpeedMetresPerSecond ?? 5);
       p.controller.move(1 / 60);
     }
