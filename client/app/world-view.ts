@@ -15,9 +15,12 @@ interface Known {
   drawn: boolean;
 }
 
+/** The part of the Renderer the world view drives (a fake in unit tests). */
+export type RenderTarget = Pick<Renderer, 'addBody' | 'removeBody' | 'store'>;
+
 /** Bodies, sensors and events of one session, mirrored into a Renderer. */
 export class WorldView {
-  private readonly renderer: Renderer;
+  private readonly renderer: RenderTarget;
   private readonly log: (line: string) => void;
   private readonly known = new Map<number, Known>();
   /** Descriptors waiting for the render time to reach the tick that carried them (ascending tick). */
@@ -31,7 +34,7 @@ export class WorldView {
   /** Bodies in views with no descriptor (a protocol problem worth surfacing). */
   undescribed = 0;
 
-  constructor(renderer: Renderer, log: (line: string) => void) {
+  constructor(renderer: RenderTarget, log: (line: string) => void) {
     this.renderer = renderer;
     this.log = log;
   }
