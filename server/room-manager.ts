@@ -14,6 +14,8 @@ const ROOM_ID_RE = /^[A-Za-z0-9_-]{1,64}$/;
 /** A simulation built for a room, with the limit the room enforces on joins. */
 export interface RoomSimulationBuild {
   sim: RoomSimulation;
+  description: string;
+  bounds: { min: { x: number; y: number; z: number }; max: { x: number; y: number; z: number } };
   /** Most bodies the world holds. */
   maxBodies: number;
   /** The parameters after defaults were filled in. */
@@ -100,8 +102,9 @@ export class RoomManager {
   }
 
   /**
-   * Resolves a request to a room: an existing id; a new room under that id when a scenario is given too; a new
-   * room with a fresh id from a scenario alone; otherwise the default room. Throws RoomError when it cannot.
+   * Resolves a request to a room: an existing id; a new room under that id when a scenario is given too (or the id
+   * itself names a scenario); a new room with a fresh id from a scenario alone; otherwise the default room.
+   * Throws RoomError when it cannot.
    */
   async resolve(req: RoomRequest): Promise<Room> {
     if (this.closing) throw new RoomError(ErrorCode.Internal, 'the server is shutting down');
@@ -116,8 +119,12 @@ export class RoomManager {
       }
       const pending = this.creating.get(req.roomId);
       if (pending) return pending;
-      if (req.scenario === undefined) throw new RoomError(ErrorCode.RoomNotFound, `no room "${req.roomId}" (give a scenario to create it)`);
-      return this.create(req.roomId, req.scenario, req.params ?? {});
+      // A room id that names a scenario opens a room of that scenario on demand (hello carries only a room id).
+      const scenario = req.scenario ?? (this.opts.factory.hasScenario(req.roomId) ? req.roomId : undefined);
+      if (scenario === undefined) {
+        throw new RoomError(ErrorCode.RoomNotFound, `no room "${req.roomId}" (open rooms: ${this.all().map((r) => r.id).join(', ') || 'none'}; a scenario name opens a room of it)`);
+      }
+      return this.create(req.roomId, scenario, req.params ?? {});
     }
     if (req.scenario !== undefined) {
       let id: string;
@@ -165,6 +172,8 @@ export class RoomManager {
     const room = new Room(built.sim, {
       id,
       scenarioName: scenario,
+      description: built.description,
+      bounds: built.bounds,
       params: built.params,
       seed,
       clock: this.opts.clock,

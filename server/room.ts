@@ -1,6 +1,6 @@
 // One room: a Simulation stepped by its own TickClock, its players and their input buffers, the exact per-tick input
 // record (stepped, recorded), and delivery of each tick's events and world frames to its members. Protocol-agnostic.
-import { BODY_STATE_STRIDE } from '../shared/physics/index.ts';
+import { BODY_STATE_STRIDE, type Vec3Like } from '../shared/physics/index.ts';
 import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '../shared/sim/types.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
@@ -62,8 +62,8 @@ export interface RoomMember {
 
 /** A refusal with a stable code the session forwards to the client. */
 export class RoomError extends Error {
-  readonly code: string;
-  constructor(code: string, message: string) {
+  readonly code: ErrorCode;
+  constructor(code: ErrorCode, message: string) {
     super(message);
     this.name = 'RoomError';
     this.code = code;
@@ -74,6 +74,10 @@ export class RoomError extends Error {
 export interface RoomOptions {
   id: string;
   scenarioName: string;
+  /** The scenario's description (for the welcome message). */
+  description?: string;
+  /** The scenario's bounds: where bodies live (the snapshot position grid). */
+  bounds?: { min: Vec3Like; max: Vec3Like };
   params: Readonly<Record<string, number>>;
   seed: number | string;
   clock: Clock;
@@ -128,6 +132,8 @@ const TICK_RATE_HZ = 60;
 export class Room {
   readonly id: string;
   readonly scenarioName: string;
+  readonly description: string;
+  readonly bounds: { min: Vec3Like; max: Vec3Like };
   readonly params: Readonly<Record<string, number>>;
   readonly seed: number | string;
   readonly sim: RoomSimulation;
@@ -151,6 +157,8 @@ export class Room {
     this.opts = opts;
     this.id = opts.id;
     this.scenarioName = opts.scenarioName;
+    this.description = opts.description ?? '';
+    this.bounds = opts.bounds ?? { min: { x: -500, y: -500, z: -500 }, max: { x: 500, y: 500, z: 500 } };
     this.params = opts.params;
     this.seed = opts.seed;
     this.lastBodyCount = sim.readBodyStates().count;
@@ -165,6 +173,16 @@ export class Room {
       },
       onError: (error) => this.fail(error),
     });
+  }
+
+  /** Snapshots per second sent to each member. */
+  get snapshotRateHz(): number {
+    return this.opts.snapshotRateHz;
+  }
+
+  /** Ticks on which a player's input had not arrived and the previous one was repeated (0 for unknown players). */
+  missedInputTicks(playerId: number): number {
+    return this.players.get(playerId)?.inputs.stats.repeated ?? 0;
   }
 
   /** Members (connected players). */

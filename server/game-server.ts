@@ -1,0 +1,153 @@
+// The transport-agnostic server core: rooms, client sessions, metrics and logs on one clock. It accepts
+// ServerConnections from any transport (the ws gateway, or in-memory links in tests) and shuts everything down cleanly.
+import { ByeReason, encodeServerMessage } from '../shared/protocol/index.ts';
+import { SystemClock, type Clock } from './clock.ts';
+import { ClientSession, DEFAULT_SESSION_LIMITS, type SessionLimits } from './client-session.ts';
+import { CloseCode, type ServerConnection } from './connection.ts';
+import { createLogger, type Logger } from './logger.ts';
+import { createMetrics, type ServerMetrics } from './metrics.ts';
+import type { RoomInfo } from './room.ts';
+import { RoomManager, type RoomFactory } from './room-manager.ts';
+
+/** Options of GameServer.create. */
+export interface GameServerOptions {
+  factory: RoomFactory;
+  /** Scenario of the default room. */
+  defaultScenario: string;
+  defaultParams?: Readonly<Record<string, number>>;
+  seed?: number | string;
+  clock?: Clock;
+  metrics?: ServerMetrics;
+  logger?: Logger;
+  /** Snapshots per second per client (1–60). Default 30. */
+  snapshotRateHz?: number;
+  /** Most clients per room. Default 32. */
+  maxClientsPerRoom?: number;
+  /** Most connections to the whole process. Default 256. */
+  maxConnections?: number;
+  maxRooms?: number;
+  emptyRoomGraceMs?: number;
+  maxCatchUpTicks?: number;
+  maxInputLeadTicks?: number;
+  pauseWhenEmpty?: boolean;
+  limits?: Partial<SessionLimits>;
+}
+
+/** The server core. */
+export class GameServer {
+  readonly clock: Clock;
+  readonly metrics: ServerMetrics;
+  readonly logger: Logger;
+  readonly rooms: RoomManager;
+  readonly limits: SessionLimits;
+  readonly snapshotRateHz: number;
+  readonly maxConnections: number;
+  private readonly sessions = new Set<ClientSession>();
+  private readonly startedMs: number;
+  private closing: Promise<void> | null = null;
+
+  private constructor(opts: GameServerOptions) {
+    this.clock = opts.clock ?? new SystemClock();
+    this.metrics = opts.metrics ?? createMetrics();
+    this.logger = opts.logger ?? createLogger();
+    this.limits = { ...DEFAULT_SESSION_LIMITS, ...opts.limits };
+    this.snapshotRateHz = opts.snapshotRateHz ?? 30;
+    if (!(this.snapshotRateHz >= 1 && this.snapshotRateHz <= 60)) throw new Error(`snapshot rate must be in [1, 60] Hz, got ${this.snapshotRateHz}`);
+    this.maxConnections = opts.maxConnections ?? 256;
+    this.startedMs = this.clock.nowMs();
+    this.rooms = new RoomManager({
+      clock: this.clock,
+      metrics: this.metrics,
+      logger: this.logger,
+      factory: opts.factory,
+      defaultScenario: opts.defaultScenario,
+      defaultParams: opts.defaultParams,
+      seed: opts.seed,
+      snapshotRateHz: this.snapshotRateHz,
+      maxClientsPerRoom: opts.maxClientsPerRoom ?? 32,
+      maxRooms: opts.maxRooms,
+      emptyRoomGraceMs: opts.emptyRoomGraceMs,
+      maxCatchUpTicks: opts.maxCatchUpTicks,
+      maxInputLeadTicks: opts.maxInputLeadTicks,
+      pauseWhenEmpty: opts.pauseWhenEmpty,
+    });
+  }
+
+  /** Builds the server and opens its default room (throws a clear Error for a bad scenario or parameters). */
+  static async create(opts: GameServerOptions): Promise<GameServer> {
+    const server = new GameServer(opts);
+    try {
+      await server.rooms.start();
+    } catch (error) {
+      throw new Error(`cannot open the default room (scenario ${opts.defaultScenario}): ${error instanceof Error ? error.message : String(error)}`, { cause: error });
+    }
+    return server;
+  }
+
+  /** Open sessions. */
+  sessionCount(): number {
+    return this.sessions.size;
+  }
+
+  /** Whether the server is shutting down (new connections are refused). */
+  get isClosing(): boolean {
+    return this.closing !== null;
+  }
+
+  /** A reason to refuse a new connection now, or null. */
+  refusal(): string | null {
+    if (this.closing) return 'server shutting down';
+    if (this.sessions.size >= this.maxConnections) return `server full (${this.maxConnections} connections)`;
+    return null;
+  }
+
+  /** Takes a new client link: a session when accepted; otherwise the link gets a bye and is closed. */
+  accept(conn: ServerConnection): ClientSession | null {
+    const refusal = this.refusal();
+    if (refusal !== null) {
+      const reason = this.closing ? ByeReason.ServerShutdown : ByeReason.ServerFull;
+      conn.attach({ message: () => {}, close: () => {} });
+      conn.send(encodeServerMessage({ type: 'bye', reason, message: refusal }));
+      conn.close(CloseCode.TryAgainLater, `${reason}: ${refusal}`);
+      this.metrics.disconnects.inc({ reason });
+      return null;
+    }
+    const session = new ClientSession(conn, {
+      clock: this.clock,
+      metrics: this.metrics,
+      logger: this.logger,
+      rooms: this.rooms,
+      limits: this.limits,
+      onEnd: (s) => this.sessions.delete(s),
+    });
+    if (!session.ended) this.sessions.add(session);
+    return session;
+  }
+
+  /** Rooms for GET /api/rooms. */
+  listRooms(): RoomInfo[] {
+    return this.rooms.list();
+  }
+
+  /** The /healthz answer. */
+  health(): { ok: boolean; status: string; uptimeSeconds: number; rooms: number; clients: number } {
+    return {
+      ok: this.closing === null,
+      status: this.closing === null ? 'ok' : 'shutting down',
+      uptimeSeconds: Math.round((this.clock.nowMs() - this.startedMs) / 1000),
+      rooms: this.rooms.all().length,
+      clients: this.sessions.size,
+    };
+  }
+
+  /** Tells every client why (bye), closes every room (recordings get their end record) and refuses new work. */
+  close(reason: string): Promise<void> {
+    if (this.closing) return this.closing;
+    this.closing = (async () => {
+      this.logger.info({ reason, sessions: this.sessions.size }, 'closing the server');
+      for (const s of [...this.sessions]) s.end(ByeReason.ServerShutdown, reason, CloseCode.GoingAway);
+      await this.rooms.closeAll(reason);
+    })();
+    return this.closing;
+  }
+}

@@ -1,0 +1,78 @@
+// Builds what a room runs on: a Simulation of a registered scenario (refused with a clear Error when the shared
+// 128 MB Jolt heap could not hold another world, since running out would abort the module) and, with --record,
+// the room's input-log recorder.
+import { Simulation } from '../shared/sim/simulation.ts';
+import type { ScenarioDefinition } from '../shared/sim/scenario.ts';
+import type { Logger } from './logger.ts';
+import { createRoomRecorder } from './recorder.ts';
+import type { RoomFactory, RoomSimulationBuild } from './room-manager.ts';
+import type { RoomRecorder } from './room.ts';
+
+/** Where scenarios come from (scenarios/index.ts in the server; a fixed list in tests). */
+export interface ScenarioSource {
+  get(name: string): ScenarioDefinition | undefined;
+  names(): readonly string[];
+}
+
+/** Options of createRoomFactory. */
+export interface RoomFactoryOptions {
+  scenarios: ScenarioSource;
+  logger: Logger;
+  /** Record every room's input log into this directory (null: no recording). */
+  recordDir?: string | null;
+  /** Hash records in logs every N ticks. Default 60. */
+  hashEveryTicks?: number;
+  /**
+   * Free WASM heap a new world needs before it is created (its own arrays + the 10 MB temp allocator + the
+   * world's reserve). Measured: character-course ~15 MB, cubes-901 ~19 MB. Default 32 MiB.
+   */
+  minFreeHeapBytesForRoom?: number;
+}
+
+/** A RoomFactory over Simulation.create with a heap guard and optional recording. */
+export function createRoomFactory(opts: RoomFactoryOptions): RoomFactory & { liveSimulations(): number } {
+  const live = new Set<Simulation>();
+  const need = opts.minFreeHeapBytesForRoom ?? 32 * 1024 * 1024;
+
+  const prune = (): void => {
+    for (const sim of live) if (sim.isDestroyed) live.delete(sim);
+  };
+  const freeHeap = (): number | null => {
+    prune();
+    for (const sim of live) return sim.world.freeHeapBytes();
+    return null; // no world yet: the heap is fresh
+  };
+
+  return {
+    liveSimulations: () => {
+      prune();
+      return live.size;
+    },
+    hasScenario: (name) => opts.scenarios.get(name) !== undefined,
+    async createSimulation(name, params, seed): Promise<RoomSimulationBuild> {
+      const def = opts.scenarios.get(name);
+      if (!def) throw new Error(`unknown scenario "${name}" (known: ${opts.scenarios.names().join(', ')})`);
+      const free = freeHeap();
+      if (free !== null && free < need) {
+        throw new Error(`not enough physics memory for another room: ${(free / 1048576).toFixed(1)} MiB free of the 128 MiB WASM heap, a room needs ${(need / 1048576).toFixed(0)} MiB; close a room first`);
+      }
+      const sim = await Simulation.create({ scenario: def, params, seed });
+      live.add(sim);
+      return { sim, maxBodies: sim.world.maxBodies, params: { ...sim.params }, description: def.description, bounds: def.bounds };
+    },
+    async createRecorder(room): Promise<RoomRecorder | null> {
+      if (!opts.recordDir) return null;
+      return createRoomRecorder({
+        dir: opts.recordDir,
+        roomId: room.id,
+        scenario: room.scenario,
+        params: room.params,
+        seed: room.seed,
+        startTick: room.sim.tick,
+        initialHash: room.sim.stateHash(),
+        logger: opts.logger,
+        hashEveryTicks: opts.hashEveryTicks,
+      });
+    },
+  };
+}

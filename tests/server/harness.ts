@@ -1,0 +1,200 @@
+// In-process server harness for tests: a GameServer on a ManualClock with real Simulations, and protocol-level test
+// clients over memory links that decode every server message and snapshot (acking them) exactly as a client would.
+import '../../server/physics-node.ts';
+import { ManualClock } from '../../server/clock.ts';
+import type { SessionLimits } from '../../server/client-session.ts';
+import { GameServer } from '../../server/game-server.ts';
+import { silentLogger } from '../../server/logger.ts';
+import { createMemoryLink, type MemoryClientEnd } from '../../server/memory-link.ts';
+import { createMetrics } from '../../server/metrics.ts';
+import { createRoomFactory, type ScenarioSource } from '../../server/room-factory.ts';
+import type { Room } from '../../server/room.ts';
+import {
+  decodeServerMessage,
+  encodeClientMessage,
+  PROTOCOL_VERSION,
+  snapshotFormatFromSpec,
+  SnapshotDecoder,
+  type QuantizedFrame,
+  type ServerMessage,
+  type WelcomeMessage,
+} from '../../shared/protocol/index.ts';
+import type { InputCommand } from '../../shared/sim/input.ts';
+import type { ScenarioDefinition } from '../../shared/sim/scenario.ts';
+import type { SimEvent, TickInputRecord } from '../../shared/sim/types.ts';
+
+/** One tick period in ms. */
+export const TICK_MS = 1000 / 60;
+
+/** A scenario source over a fixed list. */
+export function scenarioList(defs: readonly ScenarioDefinition[]): ScenarioSource {
+  return { get: (n) => defs.find((d) => d.name === n), names: () => defs.map((d) => d.name) };
+}
+
+/** Harness options. */
+export interface HarnessOptions {
+  scenarios: readonly ScenarioDefinition[];
+  defaultScenario?: string;
+  params?: Record<string, number>;
+  snapshotRateHz?: number;
+  recordDir?: string | null;
+  latencyMs?: number;
+  limits?: Partial<SessionLimits>;
+  maxClientsPerRoom?: number;
+  maxPayloadBytes?: number;
+}
+
+/** A protocol-level client: records every decoded message; decodes and acks snapshots. */
+export class TestClient {
+  readonly end: MemoryClientEnd;
+  readonly messages: ServerMessage[] = [];
+  readonly frames: QuantizedFrame[] = [];
+  readonly events: SimEvent[] = [];
+  readonly undecodable: string[] = [];
+  closed: { code: number; reason: string } | null = null;
+  welcome: WelcomeMessage | null = null;
+  decoder: SnapshotDecoder | null = null;
+  autoAck = true;
+
+  constructor(end: MemoryClientEnd) {
+    this.end = end;
+    end.onMessage((data) => this.receive(data));
+    end.onClose((code, reason) => (this.closed = { code, reason }));
+  }
+
+  private receive(data: Uint8Array): void {
+    const r = decodeServerMessage(data);
+    if (!r.ok) {
+      this.undecodable.push(r.error);
+      return;
+    }
+    const m = r.message;
+    this.messages.push(m);
+    if (m.type === 'welcome') {
+      this.welcome = m;
+      this.decoder = new SnapshotDecoder(snapshotFormatFromSpec(m.scenario.bounds, m.snapshotFormat));
+    } else if (m.type === 'snapshot') {
+      if (!this.decoder) throw new Error('snapshot before welcome');
+      const frame = this.decoder.decode(m.bytes).frame;
+      this.frames.push(frame);
+      if (this.autoAck) this.send({ type: 'ack', tick: frame.tick });
+    } else if (m.type === 'events') {
+      this.events.push(...m.events);
+    }
+  }
+
+  /** Sends a typed client message. */
+  send(m: Parameters<typeof encodeClientMessage>[0]): void {
+    this.end.send(encodeClientMessage(m));
+  }
+
+  hello(name: string, room: string | null = null): void {
+    this.send({ type: 'hello', version: PROTOCOL_VERSION, name, room });
+  }
+
+  /** Sends commands for consecutive ticks from firstTick. */
+  input(firstTick: number, commands: InputCommand[]): void {
+    this.send({ type: 'input', firstTick, commands });
+  }
+
+  get playerId(): number {
+    if (!this.welcome) throw new Error('not welcomed yet');
+    return this.welcome.playerId;
+  }
+
+  /** Messages of one type. */
+  ofType<T extends ServerMessage['type']>(type: T): Extract<ServerMessage, { type: T }>[] {
+    return this.messages.filter((m): m is Extract<ServerMessage, { type: T }> => m.type === type);
+  }
+
+  latestFrame(): QuantizedFrame {
+    const f = this.frames.at(-1);
+    if (!f) throw new Error('no snapshot yet');
+    return f;
+  }
+}
+
+/** The running harness. */
+export interface Harness {
+  clock: ManualClock;
+  server: GameServer;
+  /** Opens a link and wraps its client end (no hello sent). */
+  connect(remote?: string): TestClient;
+  /** Connects, says hello and advances until the welcome arrives. */
+  join(name: string, room?: string | null): Promise<TestClient>;
+  /** Lets pending promises (room creation) settle, advancing the clock 1 ms per turn until `done()` or the limit. */
+  settle(done: () => boolean, maxTurns?: number): Promise<void>;
+  /** Advances the clock by n tick periods. */
+  ticks(n: number): void;
+  room(id?: string): Room;
+  /** Every record the room stepped, and its hash after each step. */
+  history(id?: string): { records: TickInputRecord[]; hashes: string[] };
+  close(): Promise<void>;
+}
+
+/** Starts a harness server with its default room. */
+export async function startHarness(opts: HarnessOptions): Promise<Harness> {
+  const clock = new ManualClock();
+  const logger = silentLogger();
+  const server = await GameServer.create({
+    factory: createRoomFactory({ scenarios: scenarioList(opts.scenarios), logger, recordDir: opts.recordDir ?? null }),
+    defaultScenario: opts.defaultScenario ?? opts.scenarios[0].name,
+    defaultParams: opts.params,
+    clock,
+    logger,
+    metrics: createMetrics({ processMetrics: false }),
+    snapshotRateHz: opts.snapshotRateHz ?? 30,
+    limits: opts.limits,
+    maxClientsPerRoom: opts.maxClientsPerRoom,
+  });
+  const histories = new Map<string, { records: TickInputRecord[]; hashes: string[] }>();
+  const watch = (room: Room): void => {
+    if (histories.has(room.id)) return;
+    const h = { records: [] as TickInputRecord[], hashes: [] as string[] };
+    histories.set(room.id, h);
+    room.onTick((record) => {
+      h.records.push(structuredClone(record));
+      h.hashes.push(room.sim.stateHash());
+    });
+  };
+  for (const r of server.rooms.all()) watch(r);
+  let n = 0;
+  const h: Harness = {
+    clock,
+    server,
+    connect(remote) {
+      const link = createMemoryLink({ clock, latencyMs: opts.latencyMs ?? 0, remote: remote ?? `test-${++n}`, maxPayloadBytes: opts.maxPayloadBytes });
+      server.accept(link.server);
+      return new TestClient(link.client);
+    },
+    async settle(done, maxTurns = 2000) {
+      for (let i = 0; i < maxTurns && !done(); i++) {
+        await new Promise((resolve) => setImmediate(resolve));
+        clock.advance(1);
+      }
+    },
+    async join(name, room = null) {
+      const c = h.connect(name);
+      c.hello(name, room);
+      await h.settle(() => c.welcome !== null || c.closed !== null);
+      if (!c.welcome) throw new Error(`no welcome for ${name}: ${JSON.stringify(c.messages.slice(-2))}`);
+      for (const r of server.rooms.all()) watch(r);
+      return c;
+    },
+    ticks(count) {
+      clock.advance(count * TICK_MS);
+    },
+    room(id = 'default') {
+      const r = server.rooms.get(id);
+      if (!r) throw new Error(`no room ${id}`);
+      return r;
+    },
+    history(id = 'default') {
+      const got = histories.get(id);
+      if (!got) throw new Error(`no history for room ${id}`);
+      return got;
+    },
+    close: () => server.close('test over'),
+  };
+  return h;
+}
