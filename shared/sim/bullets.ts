@@ -29,13 +29,11 @@ export function capsuleExitDistance(aim: Vec3Like, eyeHeight = EYE_HEIGHT_METRES
   const bottom = radius;
   const top = radius + 2 * halfHeight;
   const horizontal = Math.sqrt(aim.x * aim.x + aim.z * aim.z);
-  if (horizontal > 1e-9) {
-    const t = radius / horizontal;
-    const y = eyeHeight + t * aim.y;
-    if (y >= bottom && y <= top) return t;
-  }
-  // Leaves through a hemispherical cap: solve |e + t·aim - c| = r with e - c = (0, d, 0).
-  const d = eyeHeight - (aim.y >= 0 ? top : bottom);
+  // Height where the ray reaches the cylinder's radius (±∞ when it goes straight up or down).
+  const y = horizontal > 1e-9 ? eyeHeight + (radius / horizontal) * aim.y : aim.y >= 0 ? Infinity : -Infinity;
+  if (y >= bottom && y <= top) return radius / horizontal;
+  // Leaves through the hemispherical cap on that side: solve |e + t·aim - c| = r with e - c = (0, d, 0).
+  const d = eyeHeight - (y > top ? top : bottom);
   const b = d * aim.y;
   return -b + Math.sqrt(b * b - d * d + radius * radius);
 }

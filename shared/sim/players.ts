@@ -169,15 +169,17 @@ export function newPlayer(playerId: number, name: string, joinIndex: number, con
 }
 
 /**
- * Applies a command to a player's character: horizontal velocity from the move axes, a jump when Jump is held on
- * walkable ground. Returns the aim direction when the player fires this tick (Fire held, cooldown over), else null.
+ * Applies a command to a player's character: horizontal velocity from the move axes (plus the ground's velocity
+ * when standing on walkable ground), a jump when Jump is held on walkable ground. Returns the aim direction when the player fires this tick (Fire held, cooldown over), else null.
  */
 export function applyCommand(p: Player, cmd: InputCommand, rules: ResolvedPlayerRules, tick: number): Vec3Like | null {
   p.input = cmd;
   const c = p.controller;
   const v = walkVelocity(cmd, rules.walkSpeedMetresPerSecond, (cmd.buttons & Button.Sprint) !== 0);
-  c.velocity.x = v.x;
-  c.velocity.z = v.z;
+  // On walkable ground the character also rides what it stands on (moving platforms, drifting crates).
+  const ground = c.isGrounded ? c.groundVelocity : null;
+  c.velocity.x = ground ? v.x + ground.x : v.x;
+  c.velocity.z = ground ? v.z + ground.z : v.z;
   if ((cmd.buttons & Button.Jump) !== 0 && c.isGrounded && !c.jumpPending) c.jump(rules.jumpSpeedMetresPerSecond);
   if ((cmd.buttons & Button.Fire) !== 0 && tick >= p.nextFireTick) {
     p.nextFireTick = tick + rules.fireCooldownTicks;

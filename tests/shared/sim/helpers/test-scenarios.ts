@@ -2,8 +2,8 @@
 // shoot at, a kinematic platform and a seeded spawner; plus a variant that builds the same scene in reverse order.
 import type { ScenarioContext, ScenarioDefinition, ScenarioInstance } from '../../../../shared/sim/scenario.ts';
 
-/** Where the trigger zone sits (a 2 × 2 × 2 m box centred here). */
-export const ZONE_CENTRE = { x: 6, y: 1, z: 0 };
+/** Where the trigger zone sits (a 2 × 2 × 2 m box centred here, clear of the ground). */
+export const ZONE_CENTRE = { x: 6, y: 1.2, z: 0 };
 /** The shooting wall: a static box whose near face is at z = WALL_FACE_Z (players stand at larger z). */
 export const WALL_FACE_Z = -8;
 
