@@ -1,0 +1,188 @@
+// Tests for server/client-session.ts: every kind of bad client traffic gets an error or a disconnect with a reason,
+// the other players' world is untouched (identical hash sequence), slow readers get snapshots skipped, not queued.
+import { afterEach, describe, expect, it } from 'vitest';
+import { ByeReason, ErrorCode, packValue } from '../../shared/protocol/index.ts';
+import { NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input.ts';
+import { startHarness, type Harness, type TestClient } from './harness.ts';
+import { stripScenario } from './test-scenarios.ts';
+
+let h: Harness | null = null;
+afterEach(async () => {
+  await h?.close();
+  h = null;
+});
+
+const walk = (moveX: number, moveZ = 0, buttons = 0): InputCommand => ({ ...NEUTRAL_INPUT, moveX, moveZ, buttons });
+const byes = (c: TestClient) => c.ofType('bye');
+const errorCodes = (c: TestClient) => c.ofType('error').map((e) => e.code);
+
+/** A scripted two-player session; `extra` runs before each tick to add hostile traffic. Returns the hashes. */
+async function scriptedSession(extra?: (h: Harness, tick: number, b: TestClient) => void): Promise<string[]> {
+  const harness = await startHarness({ scenarios: [stripScenario], params: { boxes: 8 } });
+  h = harness;
+  const a = await harness.join('ann');
+  const b = await harness.join('bob');
+  for (let i = 0; i < 150; i++) {
+    const next = harness.room().sim.tick + 2;
+    a.input(next, [walk(i % 40 < 20 ? 127 : -60, 40, i % 50 === 0 ? 1 : 0)]);
+    b.input(next, [walk(-90, i % 30 < 15 ? 127 : -127)]);
+    extra?.(harness, i, b);
+    harness.ticks(1);
+  }
+  const { hashes, records } = harness.history();
+  expect(records.length).toBeGreaterThan(150);
+  expect(a.closed).toBeNull();
+  expect(b.closed).toBeNull();
+  expect(b.ofType('error').length).toBe(extra ? 10 : 0);
+  await harness.close();
+  h = null;
+  return hashes;
+}
+
+describe('ClientSession', () => {
+  it('answers malformed, mistyped, NaN and out-of-place messages with errors and keeps the connection', async () => {
+    h = await startHarness({ scenarios: [stripScenario] });
+    const c = await h.join('ann');
+    c.end.send(Uint8Array.of(0xc1, 0xff, 0x00)); // not msgpack
+    c.end.sendText('{"hello":1}');
+    c.end.send(packValue([99, 1, 2]));
+    c.end.send(packValue([2, 10, [[Number.NaN, 0, 0, 0, 0]]]));
+    c.end.send(packValue([2, 10, [[0, 0, 0, 0, 0]], 'extra']));
+    c.hello('again');
+    c.end.send(new Uint8Array(5000));
+    h.ticks(2);
+    expect(errorCodes(c)).toEqual([ErrorCode.Malformed, ErrorCode.Malformed, ErrorCode.BadMessage, ErrorCode.BadInput, ErrorCode.BadMessage, ErrorCode.UnexpectedMessage, ErrorCode.Oversize]);
+    expect(c.closed).toBeNull();
+    expect(h.room().clientCount).toBe(1);
+    const metrics = await h.server.metrics.registry.getSingleMetricAsString('taos_bad_messages_total');
+    expect(metrics).toContain(`reason="${ErrorCode.BadInput}"} 1`);
+  });
+
+  it('refuses input and acks before the welcome', async () => {
+    h = await startHarness({ scenarios: [stripScenario] });
+    const c = h.connect();
+    c.input(5, [walk(1)]);
+    c.send({ type: 'ack', tick: 3 });
+    h.ticks(1);
+    expect(errorCodes(c)).toEqual([ErrorCode.UnexpectedMessage, ErrorCode.UnexpectedMessage]);
+  });
+
+  it('disconnects a client that keeps sending bad messages, with the reason', async () => {
+    h = await startHarness({ scenarios: [stripScenario] });
+    const c = h.connect();
+    for (let i = 0; i < 30; i++) c.end.send(Uint8Array.of(0xc1));
+    h.ticks(2);
+    expect(byes(c)).toEqual([expect.objectContaining({ reason: ByeReason.TooManyErrors })]);
+    expect(c.closed?.code).toBe(1008);
+    expect(h.server.sessionCount()).toBe(0);
+  });
+
+  it('disconnects a flood of valid messages beyond the per-client rate', async () => {
+    h = await startHarness({ scenarios: [stripScenario] });
+    const c = await h.join('fl');
+    for (let i = 0; i < 400; i++) c.send({ type: 'ping', clientTimeMs: i });
+    h.ticks(2);
+    expect(byes(c)).toEqual([expect.objectContaining({ reason: ByeReason.Flood })]);
+    expect(h.room().clientCount).toBe(0);
+  });
+
+  it('disconnects an input flood even when the total message rate is allowed', async () => {
+    h = await startHarness({ scenarios: [stripScenario], limits: { inputs: { perSecond: 60, burst: 20 } } });
+    const c = await h.join('fl');
+    for (let i = 0; i < 40; i++) c.input(h.room().sim.tick + 2, [walk(1)]);
+    h.ticks(2);
+    expect(byes(c)[0]?.reason).toBe(ByeReason.Flood);
+    expect(byes(c)[0]?.message).toMatch(/input/);
+  });
+
+  it('closes oversize frames at the transport like ws does and counts them', async () => {
+    h = await startHarness({ scenarios: [stripScenario], maxPayloadBytes: 1024 });
+    const c = await h.join('big');
+    c.end.send(new Uint8Array(4096));
+    h.ticks(2);
+    expect(c.closed?.code).toBe(1009);
+    expect(h.room().clientCount).toBe(0);
+    expect(await h.server.metrics.registry.getSingleMetricAsString('taos_disconnects_total')).toContain('reason="oversize"} 1');
+  });
+
+  it('ends a connection that never says hello, and refuses a protocol version it does not speak', async () => {
+    h = await startHarness({ scenarios: [stripScenario], limits: { helloTimeoutMs: 500 } });
+    const silent = h.connect();
+    const old = h.connect();
+    old.send({ type: 'hello', version: 999, name: 'old', room: null });
+    h.ticks(40);
+    expect(byes(silent)[0]?.reason).toBe(ByeReason.Timeout);
+    expect(byes(old)[0]?.reason).toBe(ByeReason.VersionMismatch);
+  });
+
+  it('refuses an unknown room with a reason', async () => {
+    h = await startHarness({ scenarios: [stripScenario] });
+    const c = h.connect();
+    c.hello('x', 'nowhere');
+    await h.settle(() => c.closed !== null);
+    expect(errorCodes(c)).toEqual([ErrorCode.RoomNotFound]);
+    expect(byes(c)[0]?.reason).toBe(ByeReason.RoomNotFound);
+  });
+
+  it('keeps the room\'s hash sequence identical when hostile clients join the traffic', async () => {
+    const clean = await scriptedSession();
+    let bob: TestClient | null = null;
+    const hostile = await scriptedSession((harness, i, b) => {
+      if (i % 50 === 7) {
+        // Player 2 itself sends junk alongside its valid inputs (within its error allowance): NaN/Infinity commands
+        // for the same ticks, bad msgpack, an oversize frame. All refused; its valid inputs still apply.
+        const target = harness.room().sim.tick + 2;
+        b.end.send(packValue([2, target, [[Number.NaN, 0, 0, 0, 0]]]));
+        b.end.send(packValue([2, target, [[0, 0, Number.POSITIVE_INFINITY, 0, 0]]]));
+        b.end.send(Uint8Array.of(0xc1));
+        if (i === 57) b.end.send(new Uint8Array(3000));
+      }
+      if (i === 0) {
+        bob = harness.connect('flooder');
+      }
+      if (bob && i < 20) for (let k = 0; k < 30; k++) bob.send({ type: 'ping', clientTimeMs: k });
+      if (i === 5) {
+        const junk = harness.connect('junk');
+        for (let k = 0; k < 40; k++) junk.end.send(Uint8Array.of(0x92, 0x02, 0xcb));
+      }
+      if (i % 10 === 3) {
+        // A joined client (player 2's neighbour in a real game) sends NaN and out-of-range inputs: refused.
+        const room = harness.room();
+        const target = room.sim.tick + 2;
+        for (const c of [packValue([2, target, [[Number.NaN, 0, 0, 0, 0]]]), packValue([2, target, [[0, 0, Number.POSITIVE_INFINITY, 0, 0]]])]) {
+          harness.connect('nan').end.send(c);
+        }
+      }
+    });
+    expect(hostile).toHaveLength(clean.length);
+    expect(hostile).toEqual(clean);
+  });
+
+  it('skips snapshots to a client that stopped reading, then disconnects it before queueing without bound', async () => {
+    h = await startHarness({
+      scenarios: [stripScenario],
+      params: { boxes: 40 },
+      snapshotRateHz: 60,
+      maxClientsPerRoom: 64,
+      limits: { snapshotSkipBufferedBytes: 2000, maxBufferedBytes: 4000 },
+    });
+    const slow = await h.join('slow');
+    const fine = await h.join('fine');
+    slow.end.setStalled(true);
+    h.ticks(30);
+    const skipped = await h.server.metrics.registry.getSingleMetricAsString('taos_snapshots_skipped_total');
+    expect(Number(/ (\d+)$/.exec(skipped)?.[1])).toBeGreaterThan(10);
+    expect(fine.frames.length).toBeGreaterThan(25);
+    expect(slow.closed).toBeNull();
+    // Events are reliable and still queue; once the backlog passes the hard limit the client is let go.
+    for (let i = 0; i < 60 && slow.closed === null; i++) {
+      await h.join(`j${i}`);
+      h.ticks(1);
+    }
+    expect(slow.closed?.code).toBe(1013);
+    slow.end.setStalled(false);
+    h.ticks(2);
+    expect(byes(slow).at(-1)?.reason).toBe(ByeReason.Timeout);
+    expect(byes(slow).at(-1)?.message).toMatch(/too slow/);
+  });
+});
