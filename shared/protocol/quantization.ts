@@ -134,35 +134,49 @@ export function dequantizeAxis(format: SnapshotFormat, axis: 0 | 1 | 2, q: numbe
  * ties pick the lowest index (x, y, z, w order). A zero or NaN quaternion quantizes as identity.
  */
 export function quantizeRotation(format: SnapshotFormat, x: number, y: number, z: number, w: number, out: Int32Array, offset: number): void {
-  const c = [x, y, z, w];
-  let largest = 3;
-  let largestAbs = -1;
-  for (let i = 0; i < 4; i++) {
-    const a = c[i] < 0 ? -c[i] : c[i];
-    if (a > largestAbs) {
-      largestAbs = a;
-      largest = i;
-    }
+  const ax = x < 0 ? -x : x;
+  const ay = y < 0 ? -y : y;
+  const az = z < 0 ? -z : z;
+  const aw = w < 0 ? -w : w;
+  // Lowest index wins ties: a later component must be strictly larger.
+  let largest = 0;
+  let largestAbs = ax;
+  if (ay > largestAbs) {
+    largest = 1;
+    largestAbs = ay;
+  }
+  if (az > largestAbs) {
+    largest = 2;
+    largestAbs = az;
+  }
+  if (aw > largestAbs) {
+    largest = 3;
+    largestAbs = aw;
   }
   if (!(largestAbs > 0)) {
-    c[0] = 0;
-    c[1] = 0;
-    c[2] = 0;
-    c[3] = 1;
+    x = 0;
+    y = 0;
+    z = 0;
+    w = 1;
     largest = 3;
   }
-  const norm = Math.sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2] + c[3] * c[3]);
-  const sign = c[largest] < 0 ? -1 / norm : 1 / norm;
-  const half = format.rotationMax / 2;
+  const norm = Math.sqrt(x * x + y * y + z * z + w * w);
+  const big = largest === 0 ? x : largest === 1 ? y : largest === 2 ? z : w;
+  const scale = ((big < 0 ? -1 : 1) / norm / ROT_RANGE) * (format.rotationMax / 2);
   out[offset] = largest;
-  let k = 1;
-  for (let i = 0; i < 4; i++) {
-    if (i === largest) continue;
-    let q = Math.round(((c[i] * sign) / ROT_RANGE) * half);
-    if (!(q >= -half)) q = -half;
-    else if (q > half) q = half;
-    out[offset + k++] = q + half;
-  }
+  let k = offset + 1;
+  if (largest !== 0) out[k++] = rotComponent(x * scale, format.rotationMax);
+  if (largest !== 1) out[k++] = rotComponent(y * scale, format.rotationMax);
+  if (largest !== 2) out[k++] = rotComponent(z * scale, format.rotationMax);
+  if (largest !== 3) out[k++] = rotComponent(w * scale, format.rotationMax);
+}
+
+function rotComponent(scaled: number, max: number): number {
+  const half = max / 2;
+  let q = Math.round(scaled);
+  if (!(q >= -half)) q = -half;
+  else if (q > half) q = half;
+  return q + half;
 }
 
 /** Writes the unit quaternion (x, y, z, w) for a quantized rotation into out[offset..offset+3]. */

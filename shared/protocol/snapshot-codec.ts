@@ -321,7 +321,10 @@ function decodeBodies(format: SnapshotFormat, r: BitReader, h: SnapshotHeader, b
   const old = base.bodies;
   for (let i = 0; i < h.bodyCount; i++) {
     const j = fromBase[i];
-    if (j >= 0) out.set(old.subarray(j * BODY_Q_STRIDE, (j + 1) * BODY_Q_STRIDE), i * BODY_Q_STRIDE);
+    if (j < 0) continue;
+    const a = i * BODY_Q_STRIDE;
+    const b = j * BODY_Q_STRIDE;
+    for (let f = 0; f < BODY_Q_STRIDE; f++) out[a + f] = old[b + f];
   }
   let kPos = 0;
   let kRot = 0;
@@ -371,7 +374,10 @@ function decodeCharacters(format: SnapshotFormat, r: BitReader, h: SnapshotHeade
   const old = base.characters;
   for (let i = 0; i < h.characterCount; i++) {
     const j = fromBase[i];
-    if (j >= 0) out.set(old.subarray(j * CHARACTER_Q_STRIDE, (j + 1) * CHARACTER_Q_STRIDE), i * CHARACTER_Q_STRIDE);
+    if (j < 0) continue;
+    const a = i * CHARACTER_Q_STRIDE;
+    const b = j * CHARACTER_Q_STRIDE;
+    for (let f = 0; f < CHARACTER_Q_STRIDE; f++) out[a + f] = old[b + f];
   }
   const pb = format.positionBits;
   const steps = format.positionSteps;

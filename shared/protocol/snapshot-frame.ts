@@ -81,6 +81,12 @@ export function quantizeFrame(format: SnapshotFormat, tick: number, read: BodySt
   for (let i = 0; i < n; i++) {
     if ((read.flags[i] & BodyFlag.Static) === 0 || (include !== undefined && include(read.ids[i]))) kept++;
   }
+  const states = read.states;
+  const minX = format.bounds.min.x;
+  const minY = format.bounds.min.y;
+  const minZ = format.bounds.min.z;
+  const [stepX, stepY, stepZ] = format.positionStepMetres;
+  const [stepsX, stepsY, stepsZ] = format.positionSteps;
   const bodyIds = new Uint32Array(kept);
   const bodies = new Int32Array(kept * BODY_Q_STRIDE);
   let j = 0;
@@ -95,10 +101,10 @@ export function quantizeFrame(format: SnapshotFormat, tick: number, read: BodySt
     const s = i * BODY_STATE_STRIDE;
     const o = j * BODY_Q_STRIDE;
     bodyIds[j] = id;
-    bodies[o] = quantizeAxis(format, 0, read.states[s]);
-    bodies[o + 1] = quantizeAxis(format, 1, read.states[s + 1]);
-    bodies[o + 2] = quantizeAxis(format, 2, read.states[s + 2]);
-    quantizeRotation(format, read.states[s + 3], read.states[s + 4], read.states[s + 5], read.states[s + 6], bodies, o + 3);
+    bodies[o] = gridIndex(states[s], minX, stepX, stepsX);
+    bodies[o + 1] = gridIndex(states[s + 1], minY, stepY, stepsY);
+    bodies[o + 2] = gridIndex(states[s + 2], minZ, stepZ, stepsZ);
+    quantizeRotation(format, states[s + 3], states[s + 4], states[s + 5], states[s + 6], bodies, o + 3);
     bodies[o + 7] = (flags & BodyFlag.Active) === 0 ? 1 : 0;
     j++;
   }
@@ -125,6 +131,13 @@ export function quantizeFrame(format: SnapshotFormat, tick: number, read: BodySt
     chars[o + 10] = (c.buttons >>> 0) & 0xff;
   }
   return { tick, bodyIds, bodies, playerIds, characters: chars };
+}
+
+/** quantizeAxis with the axis constants hoisted (the per-body hot path). */
+function gridIndex(metres: number, min: number, step: number, steps: number): number {
+  const q = Math.round((metres - min) / step);
+  if (!(q >= 0)) return 0;
+  return q > steps ? steps : q;
 }
 
 /** An empty frame (the implicit baseline of a full snapshot). */

@@ -43,6 +43,16 @@ export class TickHistory<T> {
   }
 }
 
+/** Calls fn for each id of the ascending list `before` that is missing from the ascending list `after`. */
+function forEachRemoved(before: Uint32Array, after: Uint32Array, fn: (id: number) => void): void {
+  let j = 0;
+  for (let i = 0; i < before.length; i++) {
+    const id = before[i];
+    while (j < after.length && after[j] < id) j++;
+    if (j >= after.length || after[j] !== id) fn(id);
+  }
+}
+
 /** One encoded snapshot for one client. */
 export interface EncodedSnapshot {
   tick: number;
@@ -81,11 +91,30 @@ export class SnapshotEncoder {
   private readonly sent: TickHistory<SentSnapshot>;
   private ackedTick = -1;
   private readonly known = new Set<number>();
+  private previousIds: Uint32Array | null = null;
   private readonly counters: SnapshotEncoderStats = { full: 0, delta: 0, bytes: 0, acks: 0, unknownAcks: 0 };
 
-  constructor(format: SnapshotFormat, opts: { historySize?: number } = {}) {
+  private lastFullTick = -1;
+  private readonly fullRetryTicks: number;
+
+  /**
+   * historySize: sent snapshots kept as possible baselines (default SNAPSHOT_HISTORY_SIZE).
+   * fullRetryTicks: how long shouldSend() holds back after a full snapshot that is not acked yet (default 30).
+   */
+  constructor(format: SnapshotFormat, opts: { historySize?: number; fullRetryTicks?: number } = {}) {
     this.format = format;
     this.sent = new TickHistory(opts.historySize ?? SNAPSHOT_HISTORY_SIZE);
+    this.fullRetryTicks = opts.fullRetryTicks ?? 30;
+    if (!Number.isInteger(this.fullRetryTicks) || this.fullRetryTicks < 0) throw new Error(`SnapshotEncoder: fullRetryTicks must be an integer ≥ 0, got ${opts.fullRetryTicks}`);
+  }
+
+  /**
+   * Whether a snapshot is worth sending at this tick: false while the client has no baseline and a full snapshot
+   * went out less than fullRetryTicks ago (another full one would only repeat it; the ack is on its way).
+   */
+  shouldSend(tick: number): boolean {
+    if (this.baselineTick !== null || this.lastFullTick < 0) return true;
+    return tick - this.lastFullTick >= this.fullRetryTicks || tick < this.lastFullTick;
   }
 
   /** Records descriptors delivered reliably outside snapshots (the welcome's dynamic bodies). */
@@ -132,12 +161,9 @@ export class SnapshotEncoder {
     const baseEntry = this.ackedTick >= 0 ? this.sent.get(this.ackedTick) : undefined;
     const baseline = baseEntry !== undefined && baseEntry.frame.tick < frame.tick ? baseEntry.frame : null;
     const bytes = encodeSnapshot(this.format, frame, baseline);
-    // Bodies gone from the world are forgotten, so a reused id gets its new descriptor.
-    if (this.known.size > 0) {
-      const present = new Set<number>();
-      for (let i = 0; i < frame.bodyIds.length; i++) present.add(frame.bodyIds[i]);
-      for (const id of this.known) if (!present.has(id)) this.known.delete(id);
-    }
+    // Bodies gone since the previous encode are forgotten, so a reused id gets its new descriptor.
+    if (this.previousIds !== null && this.known.size > 0) forEachRemoved(this.previousIds, frame.bodyIds, (id) => this.known.delete(id));
+    this.previousIds = frame.bodyIds;
     const descriptors: BodyDescriptor[] = [];
     const descriptorIds: number[] = [];
     const baseIds = baseline?.bodyIds;
@@ -155,7 +181,10 @@ export class SnapshotEncoder {
       descriptorIds.push(id);
     }
     this.sent.set(frame.tick, { frame, descriptorIds });
-    if (baseline === null) this.counters.full++;
+    if (baseline === null) {
+      this.counters.full++;
+      this.lastFullTick = frame.tick;
+    }
     else this.counters.delta++;
     this.counters.bytes += bytes.length;
     return { tick: frame.tick, bytes, baselineTick: baseline === null ? null : baseline.tick, descriptors };
@@ -165,6 +194,7 @@ export class SnapshotEncoder {
   reset(): void {
     this.sent.clear();
     this.ackedTick = -1;
+    this.lastFullTick = -1;
   }
 }
 

@@ -36,6 +36,17 @@ describe('snapshot-stream', () => {
     expect(enc.stats).toMatchObject({ full: 2, delta: 1, acks: 1 });
   });
 
+  it('holds back repeated full snapshots while the first one awaits its ack', () => {
+    const world = new SyntheticWorld({ seed: 6 });
+    const enc = new SnapshotEncoder(format, { fullRetryTicks: 10 });
+    expect(enc.shouldSend(1)).toBe(true);
+    world.tick = 1;
+    enc.encode(frameOf(world), (id) => world.describe(id));
+    expect([enc.shouldSend(2), enc.shouldSend(10), enc.shouldSend(11)]).toEqual([false, false, true]);
+    enc.acknowledge(1);
+    expect(enc.shouldSend(2)).toBe(true);
+  });
+
   it('never moves the baseline back on a late ack and ignores acks of ticks it never sent', () => {
     const world = new SyntheticWorld({ seed: 2 });
     const enc = new SnapshotEncoder(format);
