@@ -6,7 +6,10 @@ import { DOOR_CLOSED, DOOR_TRAVEL_METRES } from '../../scenarios/course/door.ts'
 import { TARGET_HOMES } from '../../scenarios/course/targets.ts';
 import { CollisionLayer } from '../../shared/physics/index.ts';
 import { expectParamsValidated, expectSeedDeterminism } from '../helpers/scenario-checks.ts';
+import { Simulation } from '../../shared/sim/simulation.ts';
+import type { SimEvent, TickInputRecord } from '../../shared/sim/types.ts';
 import { ScenarioHarness } from '../helpers/scenario-harness.ts';
+import { expectSimulationReplays } from '../helpers/scenario-sim.ts';
 
 /** The body the scenario named `name`. */
 function named(h: ScenarioHarness, name: string) {
@@ -36,6 +39,30 @@ function bullet(h: ScenarioHarness, from: { x: number; y: number; z: number }, v
     massKg: 0.2,
     linearVelocity: velocity,
   });
+}
+
+/** A record for `tick` in which player 1 (joining at tick 0) moves with `input`. */
+function record(tick: number, input: { moveX?: number; moveZ?: number; buttons?: number }): TickInputRecord {
+  return {
+    tick,
+    leaves: [],
+    joins: tick === 0 ? [{ playerId: 1, name: 'runner' }] : [],
+    commands: [{ playerId: 1, input: { moveX: input.moveX ?? 0, moveZ: input.moveZ ?? 0, yaw: 0, pitch: 0, buttons: input.buttons ?? 0 } }],
+  };
+}
+
+/** Steers player 1 (yaw 0: moveX is +x, moveZ is -z) to (x, z) on the ground plan; returns the events on the way. */
+function goTo(sim: Simulation, x: number, z: number, maxTicks: number): SimEvent[] {
+  const events: SimEvent[] = [];
+  for (let i = 0; i < maxTicks; i++) {
+    const me = sim.characters()[0];
+    const dx = me ? x - me.position.x : 0;
+    const dz = me ? z - me.position.z : 0;
+    if (me && Math.abs(dx) < 0.2 && Math.abs(dz) < 0.2) return events;
+    const axis = (d: number): number => (Math.abs(d) < 0.2 ? 0 : Math.max(-127, Math.min(127, Math.round(d * 150))));
+    events.push(...sim.step(record(sim.tick, { moveX: axis(dx), moveZ: -axis(dz) })));
+  }
+  throw new Error(`player 1 did not reach (${x}, ${z}) in ${maxTicks} ticks: at ${JSON.stringify(sim.characters()[0]?.position)}`);
 }
 
 describe('character-course', () => {
@@ -196,5 +223,45 @@ describe('character-course', () => {
       if (tick === 10) h.setInput(1, { moveZ: 127, moveX: 40 });
     };
     await expectSeedDeterminism(scenario, {}, 90, drive);
+  });
+  it('opens the door for a player walking into the trigger in the Simulation', async () => {
+    const sim = await Simulation.create({ scenario });
+    try {
+      const events = goTo(sim, 12, 10, 400);
+      const door = events.filter((e) => e.type === 'scenario' && e.name === 'door');
+      expect(door.map((e) => (e as { value: number }).value)).toEqual([1]);
+      const trigger = sim.staticDescriptors().find((d) => d.hidden)!;
+      expect(events.some((e) => e.type === 'sensorEnter' && e.sensorId === trigger.id && e.playerId === 1)).toBe(true);
+    } finally {
+      sim.destroy();
+    }
+  });
+
+  it('carries a player standing on the moving platform across the gap in the Simulation', async () => {
+    const sim = await Simulation.create({ scenario });
+    try {
+      goTo(sim, -7, 3, 200); // the foot of the stairs
+      goTo(sim, -7, -4, 300); // up the stairs onto the deck
+      expect(sim.characters()[0].position.y).toBeCloseTo(2, 1);
+      goTo(sim, 0, -4, 300);
+      // Wait until the platform (period 360 ticks) is about to reach the deck edge, walk onto it, then stand still.
+      while (sim.tick % 360 !== 340) sim.step(record(sim.tick, {}));
+      for (let i = 0; i < 55; i++) sim.step(record(sim.tick, { moveZ: 127 }));
+      let farthest = 0;
+      for (let i = 0; i < 150; i++) {
+        sim.step(record(sim.tick, {}));
+        farthest = Math.min(farthest, sim.characters()[0].position.z);
+      }
+      const me = sim.characters()[0];
+      expect(farthest).toBeLessThan(-11);
+      expect(me.position.y).toBeGreaterThan(1.9);
+      expect(me.groundState).toBe('ground');
+    } finally {
+      sim.destroy();
+    }
+  });
+
+  it('runs deterministically through the Simulation with bots, across checkpoint rollbacks', async () => {
+    await expectSimulationReplays(scenario, {}, 150, 3);
   });
 });

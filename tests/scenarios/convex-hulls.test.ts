@@ -4,6 +4,7 @@ import { describe, expect, it } from 'vitest';
 import { scenario } from '../../scenarios/convex-hulls.ts';
 import { expectParamsValidated, expectRestingOnSurface, expectSeedDeterminism } from '../helpers/scenario-checks.ts';
 import { ScenarioHarness } from '../helpers/scenario-harness.ts';
+import { expectSimulationReplays } from '../helpers/scenario-sim.ts';
 
 const SMALL = { count: 40, spawnPerTick: 5, areaMetres: 8, minPoints: 5, maxPoints: 12 };
 
@@ -69,5 +70,8 @@ describe('convex-hulls', () => {
 
   it('gives identical bodies for one seed and different ones for another', async () => {
     await expectSeedDeterminism(scenario, SMALL, 90);
+  });
+  it('runs deterministically through the Simulation with bots, across checkpoint rollbacks', async () => {
+    await expectSimulationReplays(scenario, SMALL, 120, 2);
   });
 });

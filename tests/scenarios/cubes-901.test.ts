@@ -3,7 +3,9 @@
 import { describe, expect, it } from 'vitest';
 import { scenario } from '../../scenarios/cubes-901.ts';
 import { expectParamsValidated, expectSeedDeterminism } from '../helpers/scenario-checks.ts';
+import { Simulation } from '../../shared/sim/simulation.ts';
 import { ScenarioHarness } from '../helpers/scenario-harness.ts';
+import { expectSimulationReplays } from '../helpers/scenario-sim.ts';
 
 const SMALL = { side: 8 };
 
@@ -108,5 +110,28 @@ describe('cubes-901', () => {
       if (tick >= 0 && tick % 20 === 0) h.setInput(1, { moveX: h.rng.int(-127, 127), moveZ: h.rng.int(0, 127) });
     };
     await expectSeedDeterminism(scenario, SMALL, 120, drive);
+  });
+  it('rolls the big cube with the input of the lowest player id in the Simulation', async () => {
+    const sim = await Simulation.create({ scenario, params: SMALL });
+    try {
+      const bigId = sim.descriptors().find((d) => d.motion === 'dynamic' && d.shape.kind === 'box' && (d.shape as { halfExtents: { x: number } }).halfExtents.x === 1)!.id;
+      const z0 = sim.world.getBody(bigId)!.position().z;
+      const cmd = (moveZ: number) => ({ moveX: 0, moveZ, yaw: 0, pitch: 0, buttons: 0 });
+      for (let t = 0; t < 240; t++) {
+        sim.step({
+          tick: t,
+          leaves: [],
+          joins: t === 0 ? [{ playerId: 7, name: 'driver' }, { playerId: 9, name: 'passenger' }] : [],
+          commands: [{ playerId: 7, input: cmd(127) }, { playerId: 9, input: cmd(-127) }],
+        });
+      }
+      expect(sim.world.getBody(bigId)!.position().z - z0).toBeLessThan(-10);
+    } finally {
+      sim.destroy();
+    }
+  });
+
+  it('runs deterministically through the Simulation with bots, across checkpoint rollbacks', async () => {
+    await expectSimulationReplays(scenario, SMALL, 120, 2);
   });
 });

@@ -4,6 +4,7 @@ import { describe, expect, it } from 'vitest';
 import { scenario } from '../../scenarios/height-field.ts';
 import { expectParamsValidated, expectRestingOnSurface, expectSeedDeterminism } from '../helpers/scenario-checks.ts';
 import { ScenarioHarness } from '../helpers/scenario-harness.ts';
+import { expectSimulationReplays } from '../helpers/scenario-sim.ts';
 
 const SMALL = { samplesPerSide: 24, cellSizeMetres: 0.75, bodyCount: 16, spawnPerTick: 4 };
 
@@ -82,5 +83,8 @@ describe('height-field', () => {
 
   it('gives identical bodies for one seed and different ones for another', async () => {
     await expectSeedDeterminism(scenario, SMALL, 90);
+  });
+  it('runs deterministically through the Simulation with bots, across checkpoint rollbacks', async () => {
+    await expectSimulationReplays(scenario, SMALL, 120, 2);
   });
 });

@@ -4,6 +4,7 @@ import { describe, expect, it } from 'vitest';
 import { scenario } from '../../scenarios/pendulum-chain.ts';
 import { expectParamsValidated, expectSeedDeterminism } from '../helpers/scenario-checks.ts';
 import { ScenarioHarness } from '../helpers/scenario-harness.ts';
+import { expectSimulationReplays } from '../helpers/scenario-sim.ts';
 
 const SMALL = { chains: 2, links: 6, linkLengthMetres: 0.5, sphereRadiusMetres: 0.15, pinsPerChain: 3 };
 
@@ -78,5 +79,8 @@ describe('pendulum-chain', () => {
 
   it('gives identical bodies for one seed and different ones for another', async () => {
     await expectSeedDeterminism(scenario, SMALL, 90);
+  });
+  it('runs deterministically through the Simulation with bots, across checkpoint rollbacks', async () => {
+    await expectSimulationReplays(scenario, SMALL, 120, 2);
   });
 });

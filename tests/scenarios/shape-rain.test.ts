@@ -4,6 +4,7 @@ import { describe, expect, it } from 'vitest';
 import { scenario } from '../../scenarios/shape-rain.ts';
 import { expectParamsValidated, expectSeedDeterminism } from '../helpers/scenario-checks.ts';
 import { ScenarioHarness } from '../helpers/scenario-harness.ts';
+import { expectSimulationReplays } from '../helpers/scenario-sim.ts';
 
 const SMALL = { count: 60, spawnPerTick: 6, areaMetres: 8, dropHeightMetres: 4 };
 
@@ -96,5 +97,8 @@ describe('shape-rain', () => {
 
   it('gives identical bodies for one seed and different ones for another', async () => {
     await expectSeedDeterminism(scenario, SMALL, 90);
+  });
+  it('runs deterministically through the Simulation with bots, across checkpoint rollbacks', async () => {
+    await expectSimulationReplays(scenario, SMALL, 120, 2);
   });
 });

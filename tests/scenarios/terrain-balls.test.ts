@@ -5,6 +5,7 @@ import { describe, expect, it } from 'vitest';
 import { scenario } from '../../scenarios/terrain-balls.ts';
 import { expectParamsValidated, expectSeedDeterminism } from '../helpers/scenario-checks.ts';
 import { ScenarioHarness } from '../helpers/scenario-harness.ts';
+import { expectSimulationReplays } from '../helpers/scenario-sim.ts';
 
 /** A small, fast mountain: 8 m tiles, a 60 m terrain disc. */
 const SMALL = { tileCells: 4, cellSizeMetres: 2, maxTiles: 12, peakMetres: 15, mountainWidthMetres: 20, terrainRadiusMetres: 60, maxBalls: 6, spawnEveryTicks: 10 };
@@ -143,5 +144,8 @@ describe('terrain-balls', () => {
 
   it('gives identical bodies for one seed and different ones for another', async () => {
     await expectSeedDeterminism(scenario, SMALL, 120);
+  });
+  it('runs deterministically through the Simulation with bots, across checkpoint rollbacks', async () => {
+    await expectSimulationReplays(scenario, SMALL, 150, 2);
   });
 });
