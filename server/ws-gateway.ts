@@ -41,6 +41,7 @@ class WsConnection implements ServerConnection {
   private early: Array<[Uint8Array, boolean]> = [];
   private closedNotified = false;
   private earlyClose: [number, string] | null = null;
+  private errorClose: [number, string] | null = null;
   alive = true;
 
   constructor(socket: WebSocket, remote: string) {
@@ -54,10 +55,15 @@ class WsConnection implements ServerConnection {
     socket.on('pong', () => {
       this.alive = true;
     });
-    // ws reports protocol violations (oversize frame → 1009, bad UTF-8 …) as 'error' and then closes; the close
-    // event carries the code, so errors need no handling beyond not crashing.
-    socket.on('error', () => {});
-    socket.on('close', (code, reason) => this.notifyClose(code, reason.toString('utf8')));
+    // ws reports protocol violations (oversize frame, bad framing) as 'error' and closes the socket itself; the
+    // close event then carries the peer's echo (or 1006), so remember why ws closed it.
+    socket.on('error', (err: Error & { code?: string }) => {
+      this.errorClose ??= err.code === 'WS_ERR_UNSUPPORTED_MESSAGE_LENGTH' ? [CloseCode.MessageTooBig, 'message too big'] : [CloseCode.ProtocolError, err.message];
+    });
+    socket.on('close', (code, reason) => {
+      if (this.errorClose) this.notifyClose(this.errorClose[0], this.errorClose[1]);
+      else this.notifyClose(code, reason.toString('utf8'));
+    });
   }
 
   private notifyClose(code: number, reason: string): void {
