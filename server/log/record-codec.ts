@@ -290,7 +290,7 @@ export function encodeCheckpoint(tick: number, bytes: Uint8Array): Uint8Array {
 export function decodeCheckpoint(payload: Uint8Array, start = 0, end = payload.length): { tick: number; bytes: Uint8Array } {
   const r = new ByteReader(payload, start, end);
   const tick = r.uvarint('tick');
-  return { tick, bytes: payload.slice(r.pos, end) };
+  return { tick, bytes: Uint8Array.prototype.slice.call(payload, r.pos, end) }; // a copy even when given a Buffer
 }
 
 /** Appends the end record payload (final tick counter, final state hash) to `w`; validates first. */

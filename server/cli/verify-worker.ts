@@ -1,0 +1,12 @@
+// Worker-thread body of `verify --workers`: replays the log named in workerData in this thread's own Jolt heap and
+// posts the ReplayReport (with every per-tick hash) back, or the error message.
+import { parentPort, workerData } from 'node:worker_threads';
+import { replayLog } from './replay-session.ts';
+
+const { file } = workerData as { file: string };
+try {
+  const report = await replayLog(file, { collectHashes: true });
+  parentPort!.postMessage({ ok: true, report });
+} catch (err) {
+  parentPort!.postMessage({ ok: false, error: (err as Error).message });
+}
