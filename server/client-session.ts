@@ -322,6 +322,8 @@ export class ClientSession implements RoomMember {
     if (this.state !== 'joined' || !this.encoder || !this.room) return;
     if (this.tooFarBehind()) return;
     const m = this.ctx.metrics;
+    // A full snapshot is on its way and not acked yet: another full one would only repeat it.
+    if (!this.encoder.shouldSend(frame.tick)) return;
     if (this.conn.bufferedAmount() > this.ctx.limits.snapshotSkipBufferedBytes) {
       this.stats.snapshotsSkipped++;
       m.snapshotsSkipped.inc();
