@@ -1,5 +1,6 @@
 // Input-log format constants and the decoded record types (see docs/input-log.md for the byte layout).
 // Shared by the codec, writer and reader; pure data, no I/O.
+import { MAX_PLAYER_ID, MAX_PLAYER_NAME_BYTES } from '../../shared/sim/tick-record.ts';
 import type { TickInputRecord } from '../../shared/sim/types.ts';
 
 /** File magic: 0x89 then ASCII "TAOSLOG" (the high byte catches 7-bit transfers and text files). */
@@ -35,12 +36,12 @@ export const MAX_PAYLOAD_BYTES: Readonly<Record<number, number>> = {
 export const MAX_FRAME_OVERHEAD_BYTES = 10;
 /** Longest length varint (4 × 7 bits covers 256 MiB). */
 export const MAX_LENGTH_VARINT_BYTES = 4;
-/** Longest player name a tick record carries, in UTF-8 bytes. */
-export const MAX_NAME_BYTES = 1024;
+/** Longest player name a tick record carries, in UTF-8 bytes (the simulation's own limit). */
+export const MAX_NAME_BYTES = MAX_PLAYER_NAME_BYTES;
 /** Longest scenario name / parameter name / seed string / createdBy, in UTF-8 bytes. */
 export const MAX_HEADER_STRING_BYTES = 1024;
-/** Largest player id (unsigned 32-bit). */
-export const MAX_PLAYER_ID = 0xffffffff;
+/** Largest player id (unsigned 32-bit, the simulation's own limit). */
+export { MAX_PLAYER_ID };
 
 /** The session description at the start of every log. */
 export interface LogHeader {
