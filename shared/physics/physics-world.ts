@@ -1,6 +1,6 @@
 // PhysicsWorld: one Jolt PhysicsSystem, its body registry with stable ids, the factories, stepping, sensors and
 // limits. Owns every Jolt object it creates; callers only ever see plain copies and BodyHandles.
-import { BodyFlag, BodyHandle, BODY_STATE_STRIDE, type BodyRole, type JoltBody } from './body-handle.ts';
+import { BodyHandle, type BodyRole, type JoltBody } from './body-handle.ts';
 import { loadJolt, type JoltModule, type PhysicsInitOptions } from './jolt-backend.ts';
 import { assertGroupBits, CollisionLayer, createLayerFilters, packObjectLayer, type LayerFilters } from './layers.ts';
 import { applyBodyOptions, flattenPoints, intOption, resolveMotion, validateBodyOptions } from './body-options.ts';
@@ -8,6 +8,7 @@ import { pointLink } from './constraints.ts';
 import { RayQueries, type RayHit } from './queries.ts';
 import { SensorHub, type SensorEvent } from './sensors.ts';
 import { BodySlots } from './body-slots.ts';
+import { BodyStateReader, type BodyStates } from './body-state-reader.ts';
 import { buildShape, checkQuat, checkVec3, estimateShapeBytes, STATIC_ONLY_KINDS, type JoltShape, type ShapeSpec } from './shapes.ts';
 import { IDENTITY_QUAT, type BodyOptions, type MotionKind, type QuatLike, type Vec3Like } from './types.ts';
 
@@ -56,9 +57,7 @@ export class PhysicsWorld {
   private nextBodyId = 1;
   private rays: RayQueries | null = null;
   private destroyed = false;
-  private stateScratch = new Float32Array(0);
-  private idScratch = new Uint32Array(0);
-  private flagScratch = new Uint8Array(0);
+  private readonly stateReader: BodyStateReader;
   /** @internal Per-world helpers (ray casts, characters) register cleanups here. */
   readonly disposers = new Set<() => void>();
 
@@ -81,6 +80,7 @@ export class PhysicsWorld {
     this.system = this.joltInterface.GetPhysicsSystem();
     this.bodyInterface = this.system.GetBodyInterface();
     this.slots = new BodySlots(J, this.bodyInterface, this.maxBodies); // owned here; disposed in destroy()
+    this.stateReader = new BodyStateReader(J);
     this.sensors = new SensorHub(J, this.system, {
       stableIdOf: (joltId) => this.byJoltId.get(joltId)?.id,
       isSensorJoltId: (joltId) => this.sensorJoltIds.has(joltId),
@@ -279,6 +279,7 @@ export class PhysicsWorld {
     });
     this.records.set(id, handle);
     this.byJoltId.set(joltId, handle);
+    this.stateReader.invalidate();
     if (info.isSensor) this.sensorJoltIds.add(joltId);
     const ids = this.sortedIds;
     if (ids.length === 0 || ids[ids.length - 1] < id) ids.push(id);
@@ -292,6 +293,7 @@ export class PhysicsWorld {
     this.slots.release(handle.joltId);
     this.records.delete(handle.id);
     this.byJoltId.delete(handle.joltId);
+    this.stateReader.invalidate();
     this.sensorJoltIds.delete(handle.joltId);
     const i = lowerBound(this.sortedIds, handle.id);
     if (this.sortedIds[i] === handle.id) this.sortedIds.splice(i, 1);
@@ -336,7 +338,6 @@ export class PhysicsWorld {
     this.slots.dispose();
     this.jolt.destroy(this.joltInterface);
     this.sensors.dispose();
-    this.stateScratch = new Float32Array(0);
   }
 
   /** Whether destroy() has run. */
@@ -494,29 +495,9 @@ export class PhysicsWorld {
    * floats per body (position, rotation, linear and angular velocity), `flags` BodyFlag bits. The arrays are
    * overwritten by the next call: copy what you keep.
    */
-  readBodyStates(): { count: number; ids: Uint32Array; states: Float32Array; flags: Uint8Array } {
+  readBodyStates(): BodyStates {
     this.live();
-    const n = this.sortedIds.length;
-    if (this.idScratch.length < n) {
-      const cap = Math.max(64, n * 2);
-      this.idScratch = new Uint32Array(cap);
-      this.stateScratch = new Float32Array(cap * BODY_STATE_STRIDE);
-      this.flagScratch = new Uint8Array(cap);
-    }
-    const ids = this.idScratch;
-    const states = this.stateScratch;
-    const flags = this.flagScratch;
-    for (let i = 0; i < n; i++) {
-      const h = this.records.get(this.sortedIds[i])!;
-      ids[i] = h.id;
-      h.readStateInto(states, i * BODY_STATE_STRIDE);
-      let f = h.motion === 'static' ? BodyFlag.Static : h.motion === 'kinematic' ? BodyFlag.Kinematic : BodyFlag.Dynamic;
-      if (h.motion !== 'static' && h.raw.IsActive()) f |= BodyFlag.Active;
-      if (h.isSensor) f |= BodyFlag.Sensor;
-      if (h.role === 'character') f |= BodyFlag.Character;
-      flags[i] = f;
-    }
-    return { count: n, ids: ids.subarray(0, n), states: states.subarray(0, n * BODY_STATE_STRIDE), flags: flags.subarray(0, n) };
+    return this.stateReader.read(this.sortedIds, this.records);
   }
 
   // ── constraints ───────────────────────────────────────────────────────────────────────────────────────────

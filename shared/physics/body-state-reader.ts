@@ -1,0 +1,118 @@
+// The bulk body read behind PhysicsWorld.readBodyStates(): the world's bodies in stable-id order, read through
+// Jolt's raw exported bindings (no wrapper objects) into reused typed arrays. Same getters, same bits, ~2× faster.
+import { BodyFlag, BODY_STATE_STRIDE, type BodyHandle } from './body-handle.ts';
+import type { JoltModule } from './jolt-backend.ts';
+
+type RawGetter = (bodyPtr: number) => number;
+
+/** The raw Body getters the glue code calls; undefined if this Jolt build does not export them. */
+function rawGetters(J: JoltModule): { pos: RawGetter; rot: RawGetter; lin: RawGetter; ang: RawGetter; active: RawGetter } | undefined {
+  const m = J as unknown as Record<string, RawGetter | undefined>;
+  const pos = m._emscripten_bind_Body_GetPosition_0;
+  const rot = m._emscripten_bind_Body_GetRotation_0;
+  const lin = m._emscripten_bind_Body_GetLinearVelocity_0;
+  const ang = m._emscripten_bind_Body_GetAngularVelocity_0;
+  const active = m._emscripten_bind_Body_IsActive_0;
+  if (!pos || !rot || !lin || !ang || !active) return undefined;
+  return { pos, rot, lin, ang, active };
+}
+
+/** The result of a bulk read: views into reused arrays, overwritten by the next read. */
+export interface BodyStates {
+  count: number;
+  ids: Uint32Array;
+  states: Float32Array;
+  flags: Uint8Array;
+}
+
+/** Reads every tracked body's pose, velocities and flags; call invalidate() whenever the body set changes. */
+export class BodyStateReader {
+  private readonly J: JoltModule;
+  private readonly raw: ReturnType<typeof rawGetters>;
+  private dirty = true;
+  private count = 0;
+  private handles: BodyHandle[] = [];
+  private ptrs = new Int32Array(0);
+  private ids = new Uint32Array(0);
+  private baseFlags = new Uint8Array(0);
+  private states = new Float32Array(0);
+  private flags = new Uint8Array(0);
+
+  constructor(J: JoltModule) {
+    this.J = J;
+    this.raw = rawGetters(J);
+  }
+
+  /** The body set changed: rebuild the ordered list on the next read. */
+  invalidate(): void {
+    this.dirty = true;
+  }
+
+  private rebuild(sortedIds: readonly number[], records: ReadonlyMap<number, BodyHandle>): void {
+    const n = sortedIds.length;
+    if (this.ids.length < n) {
+      const cap = Math.max(64, n * 2);
+      this.ptrs = new Int32Array(cap);
+      this.ids = new Uint32Array(cap);
+      this.baseFlags = new Uint8Array(cap);
+      this.states = new Float32Array(cap * BODY_STATE_STRIDE);
+      this.flags = new Uint8Array(cap);
+    }
+    this.handles = new Array<BodyHandle>(n);
+    for (let i = 0; i < n; i++) {
+      const h = records.get(sortedIds[i])!;
+      this.handles[i] = h;
+      this.ids[i] = h.id;
+      this.ptrs[i] = this.J.getPointer(h.raw);
+      let f = h.motion === 'static' ? BodyFlag.Static : h.motion === 'kinematic' ? BodyFlag.Kinematic : BodyFlag.Dynamic;
+      if (h.isSensor) f |= BodyFlag.Sensor;
+      if (h.role === 'character') f |= BodyFlag.Character;
+      this.baseFlags[i] = f;
+    }
+    this.count = n;
+    this.dirty = false;
+  }
+
+  /** Reads all bodies (ids ascending) into the reused arrays. */
+  read(sortedIds: readonly number[], records: ReadonlyMap<number, BodyHandle>): BodyStates {
+    if (this.dirty) this.rebuild(sortedIds, records);
+    const n = this.count;
+    const states = this.states;
+    const flags = this.flags;
+    const raw = this.raw;
+    if (!raw) {
+      for (let i = 0; i < n; i++) {
+        const h = this.handles[i];
+        h.readStateInto(states, i * BODY_STATE_STRIDE);
+        flags[i] = this.baseFlags[i] | ((this.baseFlags[i] & BodyFlag.Static) === 0 && h.raw.IsActive() ? BodyFlag.Active : 0);
+      }
+    } else {
+      const heap = this.J.HEAPF32;
+      const { pos, rot, lin, ang, active } = raw;
+      for (let i = 0; i < n; i++) {
+        const b = this.ptrs[i];
+        const o = i * BODY_STATE_STRIDE;
+        let p = pos(b) >> 2;
+        states[o] = heap[p];
+        states[o + 1] = heap[p + 1];
+        states[o + 2] = heap[p + 2];
+        p = rot(b) >> 2;
+        states[o + 3] = heap[p];
+        states[o + 4] = heap[p + 1];
+        states[o + 5] = heap[p + 2];
+        states[o + 6] = heap[p + 3];
+        p = lin(b) >> 2;
+        states[o + 7] = heap[p];
+        states[o + 8] = heap[p + 1];
+        states[o + 9] = heap[p + 2];
+        p = ang(b) >> 2;
+        states[o + 10] = heap[p];
+        states[o + 11] = heap[p + 1];
+        states[o + 12] = heap[p + 2];
+        const base = this.baseFlags[i];
+        flags[i] = (base & BodyFlag.Static) === 0 && active(b) ? base | BodyFlag.Active : base;
+      }
+    }
+    return { count: n, ids: this.ids.subarray(0, n), states: states.subarray(0, n * BODY_STATE_STRIDE), flags: flags.subarray(0, n) };
+  }
+}

@@ -1,0 +1,61 @@
+// Tests of the bulk body read: the same values as each handle's getters, ids ascending, flags per motion kind and
+// activity, and a rebuilt order after bodies come and go.
+import { describe, expect, it } from 'vitest';
+import { BodyFlag, BODY_STATE_STRIDE, CharacterController } from '../../../shared/physics/index.ts';
+import { makeWorld, run } from '../../helpers/physics.ts';
+
+describe('body-state-reader', () => {
+  it("reads exactly what each body's getters return, in ascending id order", async () => {
+    const w = await makeWorld();
+    w.addBox({ x: 10, y: 0.5, z: 10 }, { x: 0, y: -0.5, z: 0 }, null, { motion: 'static' });
+    for (let i = 0; i < 20; i++) w.addConvexHull([0, 0, 0, 0.5, 0, 0, 0, 0.7, 0, 0, 0, 0.4], { x: i * 0.3 - 3, y: 1 + (i % 3), z: 0 }, null, { angularVelocity: { x: i, y: 0, z: 1 } });
+    run(w, 30);
+    const s = w.readBodyStates();
+    expect(Array.from(s.ids)).toEqual(w.bodyIds());
+    for (let i = 0; i < s.count; i++) {
+      const h = w.getBody(s.ids[i])!;
+      const p = h.position();
+      const q = h.rotation();
+      const v = h.linearVelocity();
+      const a = h.angularVelocity();
+      const expected = [p.x, p.y, p.z, q.x, q.y, q.z, q.w, v.x, v.y, v.z, a.x, a.y, a.z].map((x) => Math.fround(x));
+      expect(Array.from(s.states.subarray(i * BODY_STATE_STRIDE, (i + 1) * BODY_STATE_STRIDE))).toEqual(expected);
+    }
+    w.destroy();
+  });
+
+  it('flags static, dynamic, kinematic, sensor, character and active bodies', async () => {
+    const w = await makeWorld();
+    const ground = w.addBox({ x: 10, y: 0.5, z: 10 }, { x: 0, y: -0.5, z: 0 }, null, { motion: 'static' });
+    const falling = w.addSphere(0.3, { x: 0, y: 3, z: 0 });
+    const sleeper = w.addSphere(0.3, { x: 3, y: 0.3, z: 0 });
+    const lift = w.addBox({ x: 1, y: 0.1, z: 1 }, { x: -3, y: 1, z: 0 }, null, { motion: 'kinematic' });
+    const zone = w.addBox({ x: 1, y: 1, z: 1 }, { x: 6, y: 1, z: 0 }, null, { motion: 'static', isSensor: true });
+    const ch = new CharacterController(w, { position: { x: -6, y: 0, z: 0 } });
+    run(w, 90);
+    w.setLinearVelocity(falling, { x: 0, y: 2, z: 0 });
+    const s = w.readBodyStates();
+    const flagOf = (id: number) => s.flags[Array.from(s.ids).indexOf(id)];
+    expect(flagOf(ground.id)).toBe(BodyFlag.Static);
+    expect(flagOf(falling.id)).toBe(BodyFlag.Dynamic | BodyFlag.Active);
+    expect(flagOf(sleeper.id)).toBe(BodyFlag.Dynamic);
+    expect(flagOf(lift.id) & ~BodyFlag.Active).toBe(BodyFlag.Kinematic);
+    expect(flagOf(zone.id)).toBe(BodyFlag.Static | BodyFlag.Sensor);
+    expect(flagOf(ch.body!.id) & BodyFlag.Character).toBe(BodyFlag.Character);
+    ch.destroy();
+    w.destroy();
+  });
+
+  it('follows bodies added and removed between reads', async () => {
+    const w = await makeWorld();
+    const a = w.addSphere(0.2, { x: 0, y: 0, z: 0 });
+    const b = w.addSphere(0.2, { x: 1, y: 0, z: 0 });
+    expect(Array.from(w.readBodyStates().ids)).toEqual([a.id, b.id]);
+    w.removeBody(a);
+    const c = w.addSphere(0.2, { x: 2, y: 5, z: 0 });
+    const s = w.readBodyStates();
+    expect(Array.from(s.ids)).toEqual([b.id, c.id]);
+    expect(s.states[BODY_STATE_STRIDE + 1]).toBe(5);
+    w.destroy();
+  });
+});
