@@ -130,16 +130,15 @@ export class Simulation {
   /** Applies one tick's input record and simulates 1/60 s. Throws (changing nothing) on a bad record. */
   step(record: TickInputRecord): SimEvent[] {
     const core = this.live();
-    const events = runTick(core, record);
     this.hashCache = null;
-    return events.slice();
+    return runTick(core, record).slice();
   }
 
   /** The 64-bit state hash after the last step, 16 lowercase hex characters. */
   stateHash(): string {
     const core = this.live();
     if (this.hashCache && this.hashCache.tick === core.tick) return this.hashCache.hash;
-    const hash = hashDump(dumpState(core));
+    const hash = hashDump(dumpState(core, false));
     this.hashCache = { tick: core.tick, hash };
     return hash;
   }

@@ -42,8 +42,11 @@ export interface StateDump {
   overlaps: number[];
 }
 
-/** Copies the hashed state out of a simulation core. */
-export function dumpState(core: SimCore): StateDump {
+/**
+ * The hashed state of a simulation core. With `copy` false the body arrays are views into the world's reused
+ * read buffers (valid until the next read: enough to hash at once without copying).
+ */
+export function dumpState(core: SimCore, copy = true): StateDump {
   const b = core.world.readBodyStates();
   const rows = core.world.sensorHub.exportOverlaps();
   const overlaps: number[] = [];
@@ -53,9 +56,9 @@ export function dumpState(core: SimCore): StateDump {
     prng: core.rng.getState(),
     nextBodyId: core.world.nextId,
     joinCount: core.players.joinCount,
-    ids: b.ids.slice(),
-    states: b.states.slice(),
-    flags: b.flags.slice(),
+    ids: copy ? b.ids.slice() : b.ids,
+    states: copy ? b.states.slice() : b.states,
+    flags: copy ? b.flags.slice() : b.flags,
     players: core.players.inOrder().map((p) => {
       const c = p.controller;
       const pos = c.position;
@@ -103,7 +106,8 @@ export function hashDump(d: StateDump): string {
   h.word(d.bullets.length);
   for (const b of d.bullets) h.word(b.bodyId).word(b.ownerId).word(b.expireTick);
   h.word(d.scenarioState.length);
-  for (const v of d.scenarioState) h.f64Bits(v);
+  const scenario = Float64Array.from(d.scenarioState); // each value as two words, low then high (little-endian)
+  h.words(new Uint32Array(scenario.buffer));
   h.word(d.carriedSensor.length);
   for (const v of d.carriedSensor) h.word(v);
   h.word(d.overlaps.length);
