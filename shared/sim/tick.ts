@@ -35,6 +35,7 @@ function leave(core: SimCore, playerId: number, tick: number): void {
 }
 
 function fire(core: SimCore, p: Player, aim: Vec3Like, tick: number): void {
+  if (core.world.bodyCount >= core.world.maxBodies) return; // a full world drops the shot (deterministically)
   const r = core.rules;
   const pos = muzzlePosition(p.controller.position, aim);
   const opts = bulletOptions(aim, r.bulletSpeedMetresPerSecond, r.bulletsHitPlayers, p.joinIndex, p.playerId);
