@@ -68,8 +68,12 @@ export async function replayLog(file: string, opts: ReplayOptions = {}): Promise
   let sim: Simulation | null = null;
   try {
     const header = reader.header;
-    const def = scenarioNamed(header.scenario);
-    sim = await createSimulation(def, header.params, header.seed);
+    try {
+      sim = await createSimulation(scenarioNamed(header.scenario), header.params, header.seed);
+    } catch (err) {
+      // The log, not the command line, names the scenario and parameters: a failure here is the log's problem.
+      throw new Error(`${file} cannot be replayed by this build: ${(err as Error).message}`, { cause: err });
+    }
     const s: Simulation = sim;
     const report: ReplayReport = { file, header, status: 'ok', log: 'complete', ticks: 0, hashesChecked: 0, finalHash: '', msPerTick: 0, droppedBytes: 0 };
     const jolt = installedJoltVersion();

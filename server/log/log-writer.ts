@@ -173,6 +173,11 @@ export class LogWriter {
 
   /** Appends the end record (final tick counter and hash), flushes, fsyncs and closes the file. */
   async close(finalTick: number, finalHash: string): Promise<void> {
+    if (this.failure && !this.closed) {
+      this.closed = true;
+      await this.fh.close().catch(() => undefined);
+      throw this.failure;
+    }
     this.usable();
     this.append((out) => this.encoder.appendEnd(out, finalTick, finalHash));
     this.closed = true;

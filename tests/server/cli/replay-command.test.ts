@@ -5,7 +5,9 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { readLogBytes } from '../../../server/log/log-bytes.ts';
+import { getScenario } from '../../../scenarios/index.ts';
 import { cli, jsonOut, retouchTick } from '../../helpers/cli.ts';
+import { buildLog } from '../../helpers/input-log.ts';
 
 let dir = '';
 let logPath = '';
@@ -93,6 +95,14 @@ describe('replay-command', () => {
     const full = jsonOut(await cli('replay', logPath, '--json', '--hashes'));
     const out = jsonOut(await cli('replay', logPath, '--json', '--to', '33'));
     expect(out).toMatchObject({ status: 'ok', log: 'stopped', ticks: 33, hashesChecked: 34, finalHash: (full.hashes as string[])[33] });
+  });
+
+  it('exits 1 when the log names a scenario or parameters this build does not have', async () => {
+    const path = join(dir, 'foreign.tlog');
+    await writeFile(path, buildLog(3)); // shape-rain with a "spread" parameter it does not declare
+    const r = await cli('replay', path);
+    expect(r.code).toBe(1);
+    expect(r.stderr).toBe(`taos-physics replay: ${path} cannot be replayed by this build: scenario shape-rain: unknown parameter "spread" (known: ${Object.keys(getScenario('shape-rain').params).join(', ')})\n`);
   });
 
   it('refuses a file that is not an input log', async () => {
