@@ -94,10 +94,17 @@ export function readShape(r: ByteReader, depth = 0): ShapeSpec {
 /** The JSON-able part of spawn options (sensor callbacks are never stored: bodies spawned mid-run cannot have them). */
 function optionsJson(opts: Readonly<SpawnOptions>, id: number): string {
   const { sensor: _sensor, ...rest } = opts;
+  const strict = (key: string, value: unknown): unknown => {
+    const t = typeof value;
+    if (t === 'function' || t === 'symbol' || t === 'bigint' || (t === 'number' && !Number.isFinite(value)) || ArrayBuffer.isView(value)) {
+      throw new Error(`"${key}" holds ${t === 'number' ? String(value) : ArrayBuffer.isView(value) ? 'a typed array' : `a ${t}`}`);
+    }
+    return value;
+  };
   try {
-    return JSON.stringify(rest);
+    return JSON.stringify(rest, strict);
   } catch (err) {
-    throw new Error(`saveCheckpointBytes: body ${id}'s options (userData) are not JSON data: ${(err as Error).message}`);
+    throw new Error(`saveCheckpointBytes: body ${id}'s options (userData) are not plain JSON data: ${(err as Error).message}`);
   }
 }
 

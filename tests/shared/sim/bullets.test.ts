@@ -5,7 +5,7 @@ import { BULLET_RADIUS_METRES, capsuleExitDistance, muzzlePosition } from '../..
 import { Button, quantizeInput } from '../../../shared/sim/input.ts';
 import { CHARACTER_HALF_HEIGHT_METRES as H, CHARACTER_RADIUS_METRES as R } from '../../../shared/sim/players.ts';
 import type { ScenarioDefinition } from '../../../shared/sim/scenario.ts';
-import type { Simulation } from '../../../shared/sim/simulation.ts';
+import { Simulation } from '../../../shared/sim/simulation.ts';
 import type { SimEvent } from '../../../shared/sim/types.ts';
 import { IDLE, makeSim, record } from './helpers/sim-helpers.ts';
 import { testArena, testArenaPvp, WALL_FACE_Z } from './helpers/test-scenarios.ts';
@@ -112,6 +112,15 @@ describe('bullets', () => {
     const removals = events.filter((e) => e.type === 'bodyRemoved');
     expect(removals.map((e) => e.tick)).toEqual([40, 46, 52, 58]);
     expect(removals.map((e) => (e as { bodyId: number }).bodyId)).toEqual(spawns.map((e) => (e as { bodyId: number }).bodyId));
+    sim.destroy();
+  });
+
+  it('drops a shot instead of failing when the world is full', async () => {
+    const sim = await Simulation.create({ scenario: testArena, params: { spawnEvery: 0, boxes: 0 }, worldOptions: { maxBodies: 4 } });
+    sim.step(record(0, { joins: [{ playerId: 1, name: 'p' }] }));
+    const events = run(sim, 12, () => ({ 1: FIRE(0) }));
+    expect(spawnedIds(events)).toEqual([]);
+    expect(sim.tick).toBe(13);
     sim.destroy();
   });
 });

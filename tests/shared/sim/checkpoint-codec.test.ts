@@ -82,3 +82,27 @@ describe('checkpoint-codec', () => {
     a.destroy();
   });
 });
+
+describe('checkpoint-codec body options', () => {
+  it('carries JSON userData of spawned bodies and refuses userData it cannot store', async () => {
+    let payload: unknown = { kind: 'target', points: [1, 2] };
+    const def = {
+      ...testArena,
+      build: (ctx: Parameters<typeof testArena.build>[0]) => {
+        const inner = testArena.build(ctx);
+        return { ...inner, onTick: (c: typeof ctx) => void (c.tick === 1 && c.spawn({ kind: 'sphere', radius: 0.3 }, { x: 0, y: 4, z: 0 }, null, { userData: payload })) };
+      },
+    };
+    const sim = await makeSim(def);
+    runHashes(sim, [record(0), record(1), record(2)]);
+    const fresh = await makeSim(def);
+    fresh.restoreCheckpointBytes(sim.saveCheckpointBytes());
+    const spawned = fresh.descriptors().find((d) => d.shape.kind === 'sphere')!;
+    expect(fresh.world.getBody(spawned.id)!.userData).toEqual({ kind: 'target', points: [1, 2] });
+    payload = { onHit: () => 1 };
+    const other = await makeSim(def);
+    runHashes(other, [record(0), record(1)]);
+    expect(() => other.saveCheckpointBytes()).toThrow(/userData\) are not plain JSON data: "onHit" holds a function/);
+    for (const s of [sim, fresh, other]) s.destroy();
+  });
+});
