@@ -1,0 +1,277 @@
+// An in-process server for the tick-overhead figure: the real GameServer, room, client sessions, snapshot encoders and
+// input-log writer, driven tick by tick. Clients sit behind tick-scheduled links (inputs and acks arrive a fixed
+// number of ticks after they are sent); the server's part of a tick (taking arrived messages + Room.tickOnce) is
+// what `serverTick()` runs, and the clients' part (`clientTick()`) runs outside it.
+import { mkdtemp, rm } from 'node:fs/promises';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { getScenario } from '../../scenarios/index.ts';
+import type { ClientSession } from '../../server/client-session.ts';
+import type { Clock, TimerHandle } from '../../server/clock.ts';
+import type { ConnectionHandlers, ServerConnection } from '../../server/connection.ts';
+import { GameServer } from '../../server/game-server.ts';
+import { installedJoltVersion, LogWriter } from '../../server/log/index.ts';
+import { silentLogger } from '../../server/logger.ts';
+import { createMetrics } from '../../server/metrics.ts';
+import type { Room, RoomRecorder } from '../../server/room.ts';
+import type { RoomFactory, RoomSimulationBuild } from '../../server/room-manager.ts';
+import { decodeServerMessage, encodeClientMessage, PROTOCOL_VERSION, readSnapshotHeader } from '../../shared/protocol/index.ts';
+import { BotScript } from '../../shared/sim/bots.ts';
+import { Simulation } from '../../shared/sim/simulation.ts';
+import { wsFrameBytes } from './wire.ts';
+
+const TICK_MS = 1000 / 60;
+
+/**
+ * Time for the server's rate limiters, advanced by the rig one tick at a time. Its timers never fire: the rig runs
+ * every tick itself (Room.tickOnce), so the room's own tick loop, started when the first player joins, stays idle.
+ */
+class RigClock implements Clock {
+  private now = 0;
+  private nextId = 1;
+  nowMs(): number {
+    return this.now;
+  }
+  setTimer(): TimerHandle {
+    return { id: this.nextId++ };
+  }
+  clearTimer(): void {}
+  advance(ms: number): void {
+    this.now += ms;
+  }
+}
+
+/** A server⇄client link whose client→server messages are due at a tick; server→client messages wait in an outbox. */
+class RigLink implements ServerConnection {
+  readonly remote: string;
+  private handlers: ConnectionHandlers | null = null;
+  private early: Uint8Array[] = [];
+  private open = true;
+  readonly outbox: Uint8Array[] = [];
+  constructor(remote: string) {
+    this.remote = remote;
+  }
+  send(data: Uint8Array): void {
+    if (this.open) this.outbox.push(data);
+  }
+  bufferedAmount(): number {
+    return 0;
+  }
+  isOpen(): boolean {
+    return this.open;
+  }
+  close(): void {
+    this.open = false;
+  }
+  attach(handlers: ConnectionHandlers): void {
+    this.handlers = handlers;
+    for (const d of this.early.splice(0)) handlers.message(d, true);
+  }
+  /** Hands one client message to the server (as the socket would). */
+  deliver(data: Uint8Array): void {
+    if (!this.open) return;
+    if (this.handlers) this.handlers.message(data, true);
+    else this.early.push(data);
+  }
+}
+
+interface RigClient {
+  link: RigLink;
+  session: ClientSession;
+  playerId: number;
+  /** Client→server messages by the tick they arrive at. */
+  inbound: Map<number, Uint8Array[]>;
+  bytesDown: number;
+  snapshots: number;
+}
+
+/** Rig options. */
+export interface ServerRigOptions {
+  scenario: string;
+  params: Readonly<Record<string, number>>;
+  /** Checkpoint bytes the room's simulation starts from (a warmed-up scene); null: tick 0. */
+  startBytes: Uint8Array | null;
+  clients: number;
+  snapshotRateHz: number;
+  /** One-way client⇄server delay in ticks (acks arrive 2× this after their snapshot was sent). */
+  oneWayTicks: number;
+  /** A hash record in the room's input log every N ticks. */
+  hashEveryTicks: number;
+}
+
+/** Where the server's time goes inside serverTick(), summed since the last reset (ms). */
+export interface TickParts {
+  messagesIn: number;
+  simStep: number;
+  physicsStep: number;
+  stateHash: number;
+  snapshots: number;
+  events: number;
+}
+
+/** The running rig. */
+export interface ServerRig {
+  sim: Simulation;
+  room: Room;
+  /** The server's share of one tick: arrived client messages, then Room.tickOnce(). */
+  serverTick(): void;
+  /** The clients' share: read what the server sent, ack snapshots, send the next inputs. Lets the log writer run. */
+  clientTick(): Promise<void>;
+  /** Parts of serverTick() since the last takeParts(). */
+  takeParts(): TickParts;
+  /** Bytes sent to each client (mean, WebSocket framing included) and snapshots received, since the start. */
+  downstream(): { bytesPerClient: number; snapshotsPerClient: number };
+  close(): Promise<void>;
+}
+
+function zeroParts(): TickParts {
+  return { messagesIn: 0, simStep: 0, physicsStep: 0, stateHash: 0, snapshots: 0, events: 0 };
+}
+
+/** Wraps obj[name] so its time is added to parts[key]. Measurement only: arguments and results pass through. */
+function timeMethod<T extends object>(obj: T, name: keyof T & string, parts: { current: TickParts }, key: keyof TickParts): void {
+  const original = (obj[name] as (...args: unknown[]) => unknown).bind(obj);
+  (obj as Record<string, unknown>)[name] = (...args: unknown[]): unknown => {
+    const t0 = performance.now();
+    try {
+      return original(...args);
+    } finally {
+      parts.current[key] += performance.now() - t0;
+    }
+  };
+}
+
+/**
+ * A recorder like the server's --record one: every tick record and a hash every N ticks. A log starts at tick 0, and
+ * the rig's room may start from a warmed-up checkpoint, so ticks are written relative to `startTick` (same bytes
+ * and cost; the file is scratch and never replayed).
+ */
+async function createRigRecorder(dir: string, scenario: string, params: Readonly<Record<string, number>>, hashEveryTicks: number, startTick: number): Promise<RoomRecorder> {
+  const writer = await LogWriter.create(join(dir, 'room.taoslog'), {
+    joltVersion: installedJoltVersion(),
+    scenario,
+    params: { ...params },
+    seed: 1,
+    tickRateHz: 60,
+    hashEveryTicks,
+    checkpointEveryTicks: 0,
+    createdBy: 'bench tick-overhead',
+  });
+  return {
+    append: (record) => writer.appendTick({ ...record, tick: record.tick - startTick }),
+    afterStep: (tick, hash) => {
+      if ((tick - startTick) % hashEveryTicks === 0) writer.appendHash(tick - startTick, hash());
+    },
+    close: () => writer.abandon(),
+  };
+}
+
+/** Starts the server with its default room on the scene and joins `clients` players, each driven by a scripted bot. */
+export async function startServerRig(opts: ServerRigOptions): Promise<ServerRig> {
+  const clock = new RigClock();
+  const logDir = await mkdtemp(join(tmpdir(), 'taos-bench-rig-'));
+  const parts = { current: zeroParts() };
+  let sim: Simulation | null = null;
+  const factory: RoomFactory = {
+    hasScenario: (name) => name === opts.scenario,
+    async createSimulation(name, params, seed): Promise<RoomSimulationBuild> {
+      const def = getScenario(name);
+      const s = await Simulation.create({ scenario: def, params, seed });
+      if (opts.startBytes) s.restoreCheckpointBytes(opts.startBytes);
+      sim = s;
+      return { sim: s, maxBodies: s.world.maxBodies, params: { ...s.params }, description: def.description, bounds: def.bounds };
+    },
+    createRecorder: (room) => createRigRecorder(logDir, opts.scenario, opts.params, opts.hashEveryTicks, room.sim.tick),
+  };
+  const server = await GameServer.create({
+    factory,
+    defaultScenario: opts.scenario,
+    defaultParams: opts.params,
+    clock,
+    logger: silentLogger(),
+    metrics: createMetrics({ processMetrics: false }),
+    snapshotRateHz: opts.snapshotRateHz,
+    maxClientsPerRoom: Math.max(32, opts.clients),
+    maxConnections: Math.max(256, opts.clients),
+  });
+  const room = server.rooms.all()[0];
+  const theSim = sim as Simulation | null;
+  if (!theSim || !room) throw new Error('server rig: the default room did not open');
+  timeMethod(theSim, 'step', parts, 'simStep');
+  timeMethod(theSim.world, 'stepFixed', parts, 'physicsStep');
+  timeMethod(theSim, 'stateHash', parts, 'stateHash');
+
+  const clients: RigClient[] = [];
+  for (let i = 0; i < opts.clients; i++) {
+    const link = new RigLink(`bench-${i + 1}`);
+    const session = server.accept(link);
+    if (!session) throw new Error(`server rig: client ${i + 1} was refused`);
+    link.deliver(encodeClientMessage({ type: 'hello', version: PROTOCOL_VERSION, name: `bot-${i + 1}`, room: null }));
+    for (let turn = 0; session.player === 0 && turn < 1000; turn++) await new Promise((r) => setImmediate(r));
+    if (session.player === 0) throw new Error(`server rig: client ${i + 1} was not welcomed`);
+    timeMethod(session, 'deliverFrame', parts, 'snapshots');
+    timeMethod(session, 'deliverEvents', parts, 'events');
+    clients.push({ link, session, playerId: session.player, inbound: new Map(), bytesDown: 0, snapshots: 0 });
+  }
+  room.tickClock.stop();
+  // Bots with the same player ids the room gave out (1…N in join order); their join records are the room's business.
+  const bots = new BotScript({ seed: 1, bots: opts.clients, firstPlayerId: clients[0]?.playerId ?? 1, joinTicks: clients.map(() => 0) });
+  const lead = opts.oneWayTicks + 1;
+  const queue = (c: RigClient, atTick: number, data: Uint8Array): void => {
+    const list = c.inbound.get(atTick);
+    if (list) list.push(data);
+    else c.inbound.set(atTick, [data]);
+  };
+
+  return {
+    sim: theSim,
+    room,
+    serverTick(): void {
+      const tick = theSim.tick;
+      const t0 = performance.now();
+      for (const c of clients) {
+        const due = c.inbound.get(tick);
+        if (!due) continue;
+        c.inbound.delete(tick);
+        for (const d of due) c.link.deliver(d);
+      }
+      parts.current.messagesIn += performance.now() - t0;
+      room.tickOnce();
+    },
+    async clientTick(): Promise<void> {
+      const now = theSim.tick; // the tick the server runs next
+      clock.advance(TICK_MS);
+      const record = bots.next();
+      const byPlayer = new Map(record.commands.map((c) => [c.playerId, c.input]));
+      for (const c of clients) {
+        for (const bytes of c.link.outbox.splice(0)) {
+          c.bytesDown += wsFrameBytes(bytes.length);
+          const m = decodeServerMessage(bytes);
+          if (!m.ok) throw new Error(`server rig: undecodable server message: ${m.error}`);
+          if (m.message.type === 'snapshot') {
+            c.snapshots++;
+            // The snapshot reaches the client after one way; its ack is back after the other.
+            const tick = readSnapshotHeader(m.message.bytes).tick;
+            queue(c, now - 1 + 2 * opts.oneWayTicks, encodeClientMessage({ type: 'ack', tick }));
+          } else if (m.message.type === 'bye') throw new Error(`server rig: client ${c.playerId} was sent away: ${m.message.message}`);
+        }
+        const input = byPlayer.get(c.playerId);
+        if (input) queue(c, now + opts.oneWayTicks, encodeClientMessage({ type: 'input', firstTick: now + lead, commands: [input] }));
+      }
+      await new Promise((r) => setImmediate(r));
+    },
+    takeParts(): TickParts {
+      const p = parts.current;
+      parts.current = zeroParts();
+      return p;
+    },
+    downstream() {
+      const n = Math.max(1, clients.length);
+      return { bytesPerClient: clients.reduce((s, c) => s + c.bytesDown, 0) / n, snapshotsPerClient: clients.reduce((s, c) => s + c.snapshots, 0) / n };
+    },
+    async close(): Promise<void> {
+      await server.close('bench done');
+      await rm(logDir, { recursive: true, force: true });
+    },
+  };
+}
