@@ -111,4 +111,24 @@ describe('checkpoint', () => {
     a.destroy();
     b.destroy();
   });
+
+  it('restores forty times, in both forms, without growing the WASM heap', async () => {
+    const sim = await makeSim();
+    runHashes(sim, RECORDS.slice(0, 30));
+    const cp = sim.saveCheckpoint();
+    const bytes = sim.saveCheckpointBytes();
+    runHashes(sim, RECORDS.slice(30, 70));
+    sim.restoreCheckpoint(cp);
+    const free = sim.world.freeHeapBytes();
+    for (let i = 0; i < 40; i++) {
+      runHashes(sim, RECORDS.slice(30, 70));
+      if (i % 2 === 0) sim.restoreCheckpoint(cp);
+      else sim.restoreCheckpointBytes(bytes);
+      sim.saveCheckpoint().dispose();
+    }
+    expect(Math.abs(free - sim.world.freeHeapBytes())).toBeLessThan(4096);
+    cp.dispose();
+    sim.destroy();
+  });
 });
+
