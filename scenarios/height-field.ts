@@ -6,6 +6,9 @@ import { dropOnTerrain } from './lib/terrain-drops.ts';
 import { heightSamples } from './lib/terrain-grid.ts';
 import { bowlTerrain } from './lib/terrain-heights.ts';
 
+/** Largest half-width of the terrain (m): the bounds (±140 m) with room for things rolling off its rim. */
+const TERRAIN_HALF_LIMIT_METRES = 130;
+
 /** A height-field terrain with things rolling on it. */
 export const scenario: ScenarioDefinition = {
   name: 'height-field',
@@ -25,6 +28,9 @@ export const scenario: ScenarioDefinition = {
     const n = p.samplesPerSide;
     if (n % 4 !== 0) throw new Error(`scenario height-field: parameter samplesPerSide must be a multiple of 4 (Jolt's height-field blocks), got ${n}`);
     const extent = ((n - 1) * p.cellSizeMetres) / 2;
+    if (extent > TERRAIN_HALF_LIMIT_METRES) {
+      throw new Error(`scenario height-field: ${n} samples ${p.cellSizeMetres} m apart span ${2 * extent} m; at most ${2 * TERRAIN_HALF_LIMIT_METRES} m fit the scene bounds`);
+    }
     const heightAt = bowlTerrain(ctx.rng.nextU32(), {
       amplitudeMetres: p.amplitudeMetres,
       featureMetres: 6,

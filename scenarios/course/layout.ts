@@ -1,7 +1,6 @@
 // character-course static layout: ground, stairs (0.25 m steps) and a ramp up to a deck, the far ledge across the
 // platform gap, the wall with its doorway, the range backstop and a crate stack. Coordinates and builders only.
-import { detAtan2 } from '../../shared/sim/det-math.ts';
-import { quatFromAxisAngle } from '../../shared/sim/det-math.ts';
+import { detAtan2, quatFromAxisAngle } from '../../shared/sim/det-math.ts';
 import type { ScenarioContext } from '../../shared/sim/scenario.ts';
 import { Palette, PROP_COLORS } from '../lib/palette.ts';
 import { addBlock, addGround } from '../lib/static-scene.ts';

@@ -28,6 +28,10 @@ describe('height-field', () => {
     await expect(ScenarioHarness.create(scenario, { params: { samplesPerSide: 30 } })).rejects.toThrow(/samplesPerSide must be a multiple of 4/);
   });
 
+  it('rejects a terrain wider than its bounds', async () => {
+    await expect(ScenarioHarness.create(scenario, { params: { samplesPerSide: 256, cellSizeMetres: 2 } })).rejects.toThrow(/span 510 m; at most 260 m fit the scene bounds/);
+  });
+
   it('rejects unknown and out-of-range parameters with a clear Error', async () => {
     await expectParamsValidated(scenario);
   });
