@@ -115,6 +115,11 @@ export function restoreData(core: SimCore, data: CheckpointData, restorePhysics:
     );
   }
   try {
+    // Bodies a failed hook created behind the simulation's back are not in the registry: drop them first.
+    for (const id of world.bodyIds()) {
+      const h = world.getBody(id)!;
+      if (!core.registry.has(id) && h.role !== 'character') world.removeBody(id);
+    }
     const savedPlayers = new Map(data.players.map((p) => [p.playerId, p]));
     for (const p of [...core.players.inOrder()]) {
       const s = savedPlayers.get(p.playerId);

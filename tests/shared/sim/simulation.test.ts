@@ -177,15 +177,21 @@ describe('simulation', () => {
         return { ...inner, onTick: (c) => (sneaky ? void c.world.addSphere(0.2, { x: 0, y: 3, z: 0 }, { layer: CollisionLayer.Prop }) : inner.onTick?.(c)) };
       },
     };
+    const clean = await makeSim(def);
+    idleTicks(clean, 8);
     const sim = await makeSim(def);
     idleTicks(sim, 3);
     const cp = sim.saveCheckpoint();
     sneaky = true;
     expect(() => idleTicks(sim, 1)).toThrow(/changed bodies through ctx.world directly/);
     expect(() => idleTicks(sim, 1)).toThrow(/must be restored from a checkpoint/);
+    expect(() => sim.saveCheckpoint()).toThrow(/failed at tick 3/);
     sneaky = false;
-    expect(() => sim.restoreCheckpoint(cp)).toThrow(/world has|bodies in the world/);
+    sim.restoreCheckpoint(cp);
+    idleTicks(sim, 5);
+    expect(sim.stateHash()).toBe(clean.stateHash());
     cp.dispose();
     sim.destroy();
+    clean.destroy();
   });
 });
