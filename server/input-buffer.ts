@@ -6,9 +6,9 @@ import { NEUTRAL_INPUT, type InputCommand } from '../shared/sim/input.ts';
 export const OfferResult = {
   /** Stored for its tick. */
   Accepted: 'accepted',
-  /** A command for that tick was already stored (redundant copy): ignored. */
+  /** A command for that tick was already stored or applied (a redundant copy): ignored. */
   Duplicate: 'duplicate',
-  /** Its tick was already applied: dropped. */
+  /** Its tick was already applied with a repeated command (this one came too late): dropped. */
   Late: 'late',
   /** Its tick is further ahead than the window allows: dropped. */
   TooFar: 'tooFar',
@@ -25,6 +25,8 @@ export interface InputBufferStats {
   repeated: number;
 }
 
+const HISTORY = 256;
+
 /** A per-player input buffer; `take(tick)` must be called with consecutive ticks. */
 export class InputBuffer {
   /** Furthest ahead of the next tick to apply an input may be stamped. */
@@ -32,6 +34,10 @@ export class InputBuffer {
   private readonly pending = new Map<number, InputCommand>();
   private last: InputCommand = NEUTRAL_INPUT;
   private nextTick: number;
+  // The last HISTORY applied ticks: which tick sits in each slot, and whether its own command had arrived, so a
+  // redundant copy of an applied input is told apart from an input that really came too late.
+  private readonly appliedTick = new Float64Array(HISTORY).fill(-1);
+  private readonly appliedOwn = new Uint8Array(HISTORY);
   readonly stats: InputBufferStats = { accepted: 0, duplicates: 0, late: 0, tooFar: 0, repeated: 0 };
 
   /** `firstTick` is the first tick this player's commands will be applied on. */
@@ -60,6 +66,11 @@ export class InputBuffer {
   /** Offers an already-validated command for `tick`. The first copy for a tick wins; the buffer never grows past the window. */
   offer(tick: number, command: InputCommand): OfferResult {
     if (tick < this.nextTick) {
+      const slot = tick % HISTORY;
+      if (this.appliedTick[slot] === tick && this.appliedOwn[slot] === 1) {
+        this.stats.duplicates++;
+        return OfferResult.Duplicate;
+      }
       this.stats.late++;
       return OfferResult.Late;
     }
@@ -81,6 +92,8 @@ export class InputBuffer {
     if (tick !== this.nextTick) throw new Error(`InputBuffer.take: expected tick ${this.nextTick}, got ${tick}`);
     this.nextTick = tick + 1;
     const cmd = this.pending.get(tick);
+    this.appliedTick[tick % HISTORY] = tick;
+    this.appliedOwn[tick % HISTORY] = cmd !== undefined ? 1 : 0;
     if (cmd !== undefined) {
       this.pending.delete(tick);
       this.last = cmd;

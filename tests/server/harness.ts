@@ -6,6 +6,8 @@ import type { SessionLimits } from '../../server/client-session.ts';
 import { GameServer } from '../../server/game-server.ts';
 import { silentLogger } from '../../server/logger.ts';
 import { createMemoryLink, type MemoryClientEnd } from '../../server/memory-link.ts';
+import { memoryPeerConnection } from '../../server/memory-peer.ts';
+import { MemoryNetwork, type MemoryNetworkOptions } from '../../client/net/index.ts';
 import { createMetrics } from '../../server/metrics.ts';
 import { createRoomFactory, type ScenarioSource } from '../../server/room-factory.ts';
 import type { Room } from '../../server/room.ts';
@@ -22,6 +24,9 @@ import {
 import type { InputCommand } from '../../shared/sim/input.ts';
 import type { ScenarioDefinition } from '../../shared/sim/scenario.ts';
 import type { SimEvent, TickInputRecord } from '../../shared/sim/types.ts';
+
+/** The URL the harness's MemoryNetwork listens on. */
+export const MEMORY_URL = 'ws://memory.test/';
 
 /** One tick period in ms. */
 export const TICK_MS = 1000 / 60;
@@ -127,6 +132,8 @@ export interface Harness {
   /** Advances the clock by n tick periods. */
   ticks(n: number): void;
   room(id?: string): Room;
+  /** A MemoryNetwork on the harness clock whose MEMORY_URL reaches this server (for client/net's NetClient). */
+  network(opts?: MemoryNetworkOptions): MemoryNetwork;
   /** Every record the room stepped, and its hash after each step. */
   history(id?: string): { records: TickInputRecord[]; hashes: string[] };
   close(): Promise<void>;
@@ -183,6 +190,11 @@ export async function startHarness(opts: HarnessOptions): Promise<Harness> {
     },
     ticks(count) {
       clock.advance(count * TICK_MS);
+    },
+    network(netOpts = {}) {
+      const net = new MemoryNetwork(clock, netOpts);
+      net.listen(MEMORY_URL, (peer) => server.accept(memoryPeerConnection(peer)));
+      return net;
     },
     room(id = 'default') {
       const r = server.rooms.get(id);

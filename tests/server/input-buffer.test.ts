@@ -33,6 +33,16 @@ describe('InputBuffer', () => {
     expect(buf.take(2).command).toEqual(NEUTRAL_INPUT);
   });
 
+  it('counts a redundant copy of an applied input as a duplicate, not as late', () => {
+    const buf = new InputBuffer(0);
+    buf.offer(0, cmd(1));
+    buf.take(0);
+    buf.take(1); // nothing arrived for tick 1: repeated
+    expect(buf.offer(0, cmd(1))).toBe(OfferResult.Duplicate);
+    expect(buf.offer(1, cmd(2))).toBe(OfferResult.Late);
+    expect(buf.stats).toMatchObject({ duplicates: 1, late: 1 });
+  });
+
   it('keeps the first copy of a redundant input', () => {
     const buf = new InputBuffer(0);
     buf.offer(3, cmd(1));
