@@ -2,6 +2,7 @@
 // Jolt's raw exported bindings (no wrapper objects) into reused typed arrays. Same getters, same bits, ~2× faster.
 import { BodyFlag, BODY_STATE_STRIDE, type BodyHandle } from './body-handle.ts';
 import type { JoltModule } from './jolt-backend.ts';
+import type { Vec3Like } from './types.ts';
 
 type RawGetter = (bodyPtr: number) => number;
 
@@ -71,6 +72,37 @@ export class BodyStateReader {
     }
     this.count = n;
     this.dirty = false;
+  }
+
+  /**
+   * Ids (ascending) of awake non-static bodies whose position is outside [min, max] or not finite. Sleeping bodies
+   * are skipped: they have not moved since they fell asleep, and moving one (setPosition, an impulse) wakes it.
+   */
+  awakeOutside(sortedIds: readonly number[], records: ReadonlyMap<number, BodyHandle>, min: Vec3Like, max: Vec3Like): number[] {
+    if (this.dirty) this.rebuild(sortedIds, records);
+    const out: number[] = [];
+    const heap = this.J.HEAPF32;
+    for (let i = 0; i < this.count; i++) {
+      if ((this.baseFlags[i] & BodyFlag.Static) !== 0) continue;
+      let x: number;
+      let y: number;
+      let z: number;
+      if (this.raw) {
+        const b = this.ptrs[i];
+        if (!this.raw.active(b)) continue;
+        const p = this.raw.pos(b) >> 2;
+        x = heap[p];
+        y = heap[p + 1];
+        z = heap[p + 2];
+      } else {
+        const h = this.handles[i];
+        if (!h.raw.IsActive()) continue;
+        ({ x, y, z } = h.position());
+      }
+      // NaN compares false everywhere, so a body whose state blew up counts as outside.
+      if (!(x >= min.x && x <= max.x && y >= min.y && y <= max.y && z >= min.z && z <= max.z)) out.push(this.ids[i]);
+    }
+    return out;
   }
 
   /** Reads all bodies (ids ascending) into the reused arrays. */

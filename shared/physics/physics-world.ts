@@ -500,6 +500,12 @@ export class PhysicsWorld {
     return this.stateReader.read(this.sortedIds, this.records);
   }
 
+  /** Ids (ascending) of awake non-static bodies outside the box [min, max] or with a non-finite position. */
+  awakeBodiesOutside(min: Vec3Like, max: Vec3Like): number[] {
+    this.live();
+    return this.stateReader.awakeOutside(this.sortedIds, this.records, min, max);
+  }
+
   // ── constraints ───────────────────────────────────────────────────────────────────────────────────────────
 
   /** Creates a constraint from any TwoBodyConstraintSettings, consuming (destroying) the settings. */

@@ -58,4 +58,22 @@ describe('body-state-reader', () => {
     expect(s.states[BODY_STATE_STRIDE + 1]).toBe(5);
     w.destroy();
   });
+
+  it('lists awake bodies outside a box, skipping static and sleeping ones', async () => {
+    const w = await makeWorld();
+    const ground = w.addBox({ x: 10, y: 0.5, z: 10 }, { x: 0, y: -0.5, z: 0 }, null, { motion: 'static' });
+    const farStatic = w.addBox({ x: 1, y: 1, z: 1 }, { x: 50, y: 0, z: 0 }, null, { motion: 'static' });
+    const sleeper = w.addSphere(0.3, { x: 3, y: 0.3, z: 0 });
+    const faller = w.addSphere(0.3, { x: -3, y: 0.3, z: 0 });
+    run(w, 120);
+    expect(sleeper.isActive()).toBe(false);
+    const min = { x: -5, y: -1, z: -5 };
+    const max = { x: 5, y: 5, z: 5 };
+    expect(w.awakeBodiesOutside(min, max)).toEqual([]);
+    w.setPosition(faller, { x: -30, y: 0.3, z: 0 });
+    expect(w.awakeBodiesOutside(min, max)).toEqual([faller.id]);
+    expect([ground.id, farStatic.id, sleeper.id].some((id) => w.awakeBodiesOutside(min, max).includes(id))).toBe(false);
+    w.destroy();
+  });
 });
+
