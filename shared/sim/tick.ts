@@ -1,6 +1,6 @@
 // One 60 Hz tick, in the documented order (docs/simulation.md): leaves → joins → commands (walk, jump, fire) →
 // characters move → physics step → scenario onTick → bullet expiry and bounds → sensor events → onEvents.
-import { BODY_STATE_STRIDE, BodyFlag, IDENTITY_QUAT, type Vec3Like } from '../physics/index.ts';
+import { IDENTITY_QUAT, type Vec3Like } from '../physics/index.ts';
 import { makeRecord, playerColor } from './body-registry.ts';
 import { BULLET_SHAPE, bulletOptions, muzzlePosition } from './bullets.ts';
 import { applyCommand, CHARACTER_SHAPE, createCharacter, newPlayer, type Player } from './players.ts';
@@ -44,11 +44,6 @@ function fire(core: SimCore, p: Player, aim: Vec3Like, tick: number): void {
   core.tickEvents.push({ type: 'bodySpawned', tick, bodyId: rec.id });
 }
 
-function outside(x: number, y: number, z: number, min: Vec3Like, max: Vec3Like): boolean {
-  // NaN compares false everywhere, so a body whose state blew up counts as outside.
-  return !(x >= min.x && x <= max.x && y >= min.y && y <= max.y && z >= min.z && z <= max.z);
-}
-
 /** Removes expired bullets and bodies that left the bounds; characters that left are put back at their spawn point. */
 function expireAndBound(core: SimCore, tick: number): void {
   for (const b of core.bullets.takeExpired(tick)) {
@@ -57,26 +52,20 @@ function expireAndBound(core: SimCore, tick: number): void {
     core.tickEvents.push({ type: 'bodyRemoved', tick, bodyId: b.bodyId });
   }
   const { min, max } = core.def.bounds;
-  const s = core.world.readBodyStates();
-  const gone: number[] = [];
-  for (let i = 0; i < s.count; i++) {
-    if ((s.flags[i] & BodyFlag.Static) !== 0) continue;
-    const o = i * BODY_STATE_STRIDE;
-    if (outside(s.states[o], s.states[o + 1], s.states[o + 2], min, max)) gone.push(s.ids[i]);
-  }
-  for (const id of gone) {
+  for (const id of core.world.awakeBodiesOutside(min, max)) {
     const rec = core.registry.get(id)!;
-    if (rec.kind === 'character') {
-      const player = core.players.get(rec.descriptor.playerId!)!;
-      player.controller.setPosition(checkSpawnPoint(core, player.joinIndex));
-      player.controller.velocity.x = 0;
-      player.controller.velocity.y = 0;
-      player.controller.velocity.z = 0;
-      continue;
-    }
+    if (rec.kind === 'character') continue; // checked below, asleep or not
     if (rec.kind === 'bullet') core.bullets.forget(id);
     destroyBody(core, id);
     core.tickEvents.push({ type: 'bodyRemoved', tick, bodyId: id });
+  }
+  for (const p of core.players.inOrder()) {
+    const { x, y, z } = p.controller.position;
+    if (x >= min.x && x <= max.x && y >= min.y && y <= max.y && z >= min.z && z <= max.z) continue;
+    p.controller.setPosition(checkSpawnPoint(core, p.joinIndex));
+    p.controller.velocity.x = 0;
+    p.controller.velocity.y = 0;
+    p.controller.velocity.z = 0;
   }
 }
 
