@@ -1,5 +1,6 @@
 // The command table: every CLI command, in help order. Adding a command = one file exporting a CommandSpec and
 // one line here.
+import { botsCommand } from './bots-command.ts';
 import type { CommandSpec } from './command.ts';
 import { goldensCommand } from './goldens-command.ts';
 import { inspectCommand } from './inspect-command.ts';
@@ -11,7 +12,7 @@ import { serveCommand } from './serve-command.ts';
 import { verifyCommand } from './verify-command.ts';
 
 /** Every command, in the order `--help` lists them. */
-export const COMMANDS: readonly CommandSpec[] = [runCommand, recordCommand, replayCommand, verifyCommand, inspectCommand, scenariosCommand, goldensCommand, serveCommand];
+export const COMMANDS: readonly CommandSpec[] = [runCommand, recordCommand, replayCommand, verifyCommand, inspectCommand, scenariosCommand, goldensCommand, serveCommand, botsCommand];
 
 /** The command called `name`, if any. */
 export function findCommand(name: string): CommandSpec | undefined {
