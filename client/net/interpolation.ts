@@ -171,10 +171,12 @@ export class InterpolationBuffer {
     if (this.renderTick === null || Math.abs(target - this.renderTick) > snapTicks) {
       this.renderTick = target;
     } else {
-      const dtMs = Math.max(0, nowMs - this.lastSampleMs);
-      // Steer towards the target by running up to 10% fast or slow: no visible jumps, never backwards.
-      const speed = 1 + Math.max(-0.1, Math.min(0.1, (target - this.renderTick) * 0.1));
-      this.renderTick += (dtMs / this.tickMs) * speed;
+      // Advance with the clock, then steer towards the target by at most 10% of the advance (running up to 10%
+      // fast or slow): no visible jumps, never backwards.
+      const advance = Math.max(0, nowMs - this.lastSampleMs) / this.tickMs;
+      const predicted = this.renderTick + advance;
+      const maxCorrection = 0.1 * advance;
+      this.renderTick = predicted + Math.max(-maxCorrection, Math.min(maxCorrection, target - predicted));
     }
     this.lastSampleMs = nowMs;
     const rt = this.renderTick;
