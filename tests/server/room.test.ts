@@ -4,7 +4,7 @@ import { describe, expect, it } from 'vitest';
 import { ManualClock } from '../../server/clock.ts';
 import { OfferResult } from '../../server/input-buffer.ts';
 import { silentLogger } from '../../server/logger.ts';
-import { createMetrics } from '../../server/metrics.ts';
+import { createMetrics, type ServerMetrics } from '../../server/metrics.ts';
 import { Room, RoomError, type BodyStates, type RoomMember, type RoomOptions, type RoomSimulation, type WorldFrame } from '../../server/room.ts';
 import { NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input.ts';
 import type { CharacterState, SimEvent, TickInputRecord } from '../../shared/sim/types.ts';
@@ -74,16 +74,17 @@ class Member implements RoomMember {
 const cmd = (moveX: number): InputCommand => ({ ...NEUTRAL_INPUT, moveX });
 const TICK_MS = 1000 / 60;
 
-function makeRoom(over: Partial<RoomOptions> = {}): { room: Room; sim: FakeSim; clock: ManualClock } {
+function makeRoom(over: Partial<RoomOptions> = {}): { room: Room; sim: FakeSim; clock: ManualClock; metrics: ServerMetrics } {
   const sim = new FakeSim();
   const clock = new ManualClock();
+  const metrics = createMetrics({ processMetrics: false });
   const room = new Room(sim, {
     id: 'r',
     scenarioName: 'fake',
     params: {},
     seed: 1,
     clock,
-    metrics: createMetrics({ processMetrics: false }),
+    metrics,
     logger: silentLogger(),
     snapshotRateHz: 30,
     maxClients: 4,
@@ -91,7 +92,7 @@ function makeRoom(over: Partial<RoomOptions> = {}): { room: Room; sim: FakeSim; 
     ...over,
   });
   room.start();
-  return { room, sim, clock };
+  return { room, sim, clock, metrics };
 }
 
 describe('Room', () => {
@@ -187,6 +188,24 @@ describe('Room', () => {
     clock.advance(5 * TICK_MS);
     expect(room.clientCount).toBe(1);
     expect(good.frames.length).toBe(6);
+  });
+
+  it('slows down instead of spiralling when ticks take longer than a period, and reports it', async () => {
+    const { room, sim, clock, metrics } = makeRoom();
+    room.join(new Member(), 'a');
+    // Every step costs 40 ms of (manual) time: 2.4 periods.
+    const step = sim.step.bind(sim);
+    sim.step = (record) => {
+      clock.advance(40);
+      return step(record);
+    };
+    clock.advance(2000);
+    // Without a limit the tick clock would chase 120 ticks forever; with it, it runs what fits and gives up the rest.
+    expect(sim.tick).toBeGreaterThan(40);
+    expect(sim.tick).toBeLessThan(80);
+    expect(room.tickClock.slowdowns).toBeGreaterThan(0);
+    const skipped = await metrics.registry.getSingleMetricAsString('taos_ticks_skipped_total');
+    expect(Number(/ (\d+)$/.exec(skipped)?.[1])).toBeGreaterThan(20);
   });
 
   it('closes with a reason when the simulation fails, telling every member', async () => {
