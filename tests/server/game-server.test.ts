@@ -101,6 +101,17 @@ describe('GameServer (in-process)', () => {
     expect(leaveRecord).toBeDefined();
   });
 
+  it('refuses connections past the server\'s limit with a bye saying why', async () => {
+    h = await startHarness({ scenarios: [stripScenario], maxConnections: 2 });
+    await h.join('a');
+    await h.join('b');
+    const c = h.connect();
+    h.ticks(1);
+    expect(c.ofType('bye')).toEqual([expect.objectContaining({ reason: 'server-full' })]);
+    expect(c.closed?.code).toBe(1013);
+    expect(h.server.sessionCount()).toBe(2);
+  });
+
   it('gives a late joiner a full snapshot of the current world', async () => {
     h = await startHarness({ scenarios: [stripScenario], params: { boxes: 6 } });
     const a = await h.join('ann');

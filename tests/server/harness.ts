@@ -46,6 +46,8 @@ export interface HarnessOptions {
   latencyMs?: number;
   limits?: Partial<SessionLimits>;
   maxClientsPerRoom?: number;
+  maxRooms?: number;
+  maxConnections?: number;
   maxPayloadBytes?: number;
 }
 
@@ -153,6 +155,8 @@ export async function startHarness(opts: HarnessOptions): Promise<Harness> {
     snapshotRateHz: opts.snapshotRateHz ?? 30,
     limits: opts.limits,
     maxClientsPerRoom: opts.maxClientsPerRoom,
+    maxRooms: opts.maxRooms,
+    maxConnections: opts.maxConnections,
   });
   const histories = new Map<string, { records: TickInputRecord[]; hashes: string[] }>();
   const watch = (room: Room): void => {
