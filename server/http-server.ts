@@ -32,11 +32,14 @@ function readBody(req: IncomingMessage): Promise<string> {
   return new Promise((resolve, reject) => {
     const chunks: Buffer[] = [];
     let size = 0;
+    let refused = false;
     req.on('data', (c: Buffer) => {
+      if (refused) return; // drain the rest without keeping it, so the 413 answer can be read
       size += c.length;
       if (size > MAX_BODY_BYTES) {
+        refused = true;
+        chunks.length = 0;
         reject(Object.assign(new Error(`request body over ${MAX_BODY_BYTES} bytes`), { status: 413 }));
-        req.destroy();
         return;
       }
       chunks.push(c);
