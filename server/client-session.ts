@@ -160,6 +160,7 @@ export class ClientSession implements RoomMember {
       this.refuse(decoded.code, decoded.error);
       return;
     }
+    if (decoded.clampedCommands > 0) m.inputsClamped.inc(decoded.clampedCommands);
     try {
       this.handle(decoded.message);
     } catch (error) {

@@ -27,6 +27,8 @@ export interface ServerMetrics {
   /** Ticks on which a player's last input was repeated because none had arrived. */
   readonly inputsRepeated: Counter<string>;
   readonly inputsAccepted: Counter<string>;
+  /** Input commands the validator clamped into range (accepted, but the client sent out-of-range values). */
+  readonly inputsClamped: Counter<string>;
   readonly snapshotBytes: Histogram<string>;
   /** Snapshots by kind (full, delta). */
   readonly snapshotsSent: Counter<string>;
@@ -65,6 +67,7 @@ export function createMetrics(opts: { processMetrics?: boolean; prefix?: string 
     inputsDropped: counter('inputs_dropped_total', 'Inputs dropped for a reason other than being late', ['reason']),
     inputsRepeated: counter('inputs_repeated_total', "Player ticks that repeated the last input because none had arrived"),
     inputsAccepted: counter('inputs_accepted_total', 'Inputs stored for a future tick'),
+    inputsClamped: counter('inputs_clamped_total', 'Input commands clamped into range by validation'),
     snapshotBytes: new Histogram({ name: `${p}snapshot_bytes`, help: 'Encoded size of one snapshot message', buckets: SNAPSHOT_BYTE_BUCKETS, registers }),
     snapshotsSent: counter('snapshots_sent_total', 'Snapshots sent', ['kind']),
     snapshotsSkipped: counter('snapshots_skipped_total', "Snapshots skipped because the client's socket buffer was backed up"),

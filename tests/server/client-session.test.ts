@@ -56,6 +56,14 @@ describe('ClientSession', () => {
     expect(h.room().clientCount).toBe(1);
     const metrics = await h.server.metrics.registry.getSingleMetricAsString('taos_bad_messages_total');
     expect(metrics).toContain(`reason="${ErrorCode.BadInput}"} 1`);
+    // Out-of-range numbers are clamped, not refused: accepted, and counted.
+    const tick = h.room().sim.tick + 2;
+    c.end.send(packValue([2, tick, [[500, -500, 70000, 99999, 1]]]));
+    h.ticks(4);
+    expect(errorCodes(c)).toHaveLength(7);
+    expect(await h.server.metrics.registry.getSingleMetricAsString('taos_inputs_clamped_total')).toMatch(/ 1$/);
+    const applied = h.history().records.find((r) => r.tick === tick)?.commands.find((cmd) => cmd.playerId === c.playerId)?.input;
+    expect(applied).toEqual({ moveX: 127, moveZ: -127, yaw: 70000 - 65536, pitch: 16384, buttons: 1 });
   });
 
   it('refuses input and acks before the welcome', async () => {
