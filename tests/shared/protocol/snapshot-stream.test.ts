@@ -6,6 +6,9 @@ import { createSnapshotFormat } from '../../../shared/protocol/quantization.ts';
 import { framesEqual, quantizeFrame, type QuantizedFrame } from '../../../shared/protocol/snapshot-frame.ts';
 import { SnapshotDecoder, SnapshotEncoder, TickHistory, type EncodedSnapshot } from '../../../shared/protocol/snapshot-stream.ts';
 import { Prng } from '../../../shared/sim/prng.ts';
+import { scenario as cubes901 } from '../../../scenarios/cubes-901.ts';
+import { BotScript } from '../../../shared/sim/bots.ts';
+import { Simulation } from '../../../shared/sim/simulation.ts';
 import { makeWorld } from '../../helpers/physics.ts';
 import { SYNTH_BOUNDS, SyntheticWorld } from './synthetic-world.ts';
 
@@ -163,6 +166,41 @@ describe('snapshot-stream', () => {
     expect(baselineMisses).toBe(0);
   });
 
+  it('keeps cubes-901 at 60 Hz under 128 kbps per client with acks one 100 ms round trip late', async () => {
+    // 6 s of the bandwidth scene with a scripted driver: one full snapshot at the join, then deltas.
+    const sim = await Simulation.create({ scenario: cubes901, seed: 1 });
+    try {
+      const fmt = createSnapshotFormat(cubes901.bounds);
+      const enc = new SnapshotEncoder(fmt);
+      enc.markDescriptorsKnown(sim.descriptors().filter((d) => d.motion !== 'static').map((d) => d.id));
+      const dec = new SnapshotDecoder(fmt);
+      const bots = new BotScript({ seed: 1, bots: 1, joinTicks: [0] });
+      const acks: Array<{ at: number; tick: number }> = [];
+      let bytes = 0;
+      let afterJoin = 0;
+      let mismatches = 0;
+      for (let t = 0; t < 360; t++) {
+        sim.step(bots.next());
+        const tick = sim.tick;
+        while (acks.length > 0 && acks[0].at <= tick) enc.acknowledge(acks.shift()!.tick);
+        const frame = quantizeFrame(fmt, tick, sim.readBodyStates(), sim.characters());
+        if (!enc.shouldSend(tick)) continue;
+        const out = enc.encode(frame, (id) => sim.bodyDescriptor(id));
+        if (!framesEqual(dec.decode(out.bytes).frame, frame)) mismatches++;
+        // Payload plus the snapshot message's msgpack framing (5 bytes) and a WebSocket header (≤ 4 bytes).
+        bytes += out.bytes.length + 9;
+        if (tick > 60) afterJoin += out.bytes.length + 9;
+        acks.push({ at: tick + 6, tick });
+      }
+      expect(mismatches).toBe(0);
+      expect(frameBodies(sim)).toBeGreaterThan(900);
+      expect((bytes * 8) / 6 / 1000).toBeLessThan(128);
+      expect((afterJoin * 8) / 5 / 1000).toBeLessThan(128);
+    } finally {
+      sim.destroy();
+    }
+  });
+
   it('decodes a real Jolt stream of falling, spawning and removed bodies exactly', async () => {
     const world = await makeWorld({ maxBodies: 512 });
     try {
@@ -197,3 +235,7 @@ describe('snapshot-stream', () => {
     }
   });
 });
+
+function frameBodies(sim: Simulation): number {
+  return quantizeFrame(createSnapshotFormat(cubes901.bounds), sim.tick, sim.readBodyStates(), []).bodyIds.length;
+}
