@@ -31,6 +31,8 @@ interface BenchClient {
   otherBytes: number;
   lastTick: number;
   measuring: boolean;
+  welcomeBytes: number;
+  firstSnapshotBytes: number;
 }
 
 function send(ws: WebSocket, m: ClientMessage): void {
@@ -39,7 +41,7 @@ function send(ws: WebSocket, m: ClientMessage): void {
 
 async function connect(url: string, name: string, decodeAll: boolean): Promise<BenchClient> {
   const ws = new WebSocket(url);
-  const c: BenchClient = { ws, playerId: 0, snapshotBytes: 0, snapshots: 0, fullSnapshots: 0, otherBytes: 0, lastTick: 0, measuring: false };
+  const c: BenchClient = { ws, playerId: 0, snapshotBytes: 0, snapshots: 0, fullSnapshots: 0, otherBytes: 0, lastTick: 0, measuring: false, welcomeBytes: 0, firstSnapshotBytes: 0 };
   let decoder: SnapshotDecoder | null = null;
   await new Promise<void>((resolve, reject) => {
     ws.once('open', () => resolve());
@@ -53,11 +55,13 @@ async function connect(url: string, name: string, decodeAll: boolean): Promise<B
       const m = r.message;
       if (m.type === 'welcome') {
         c.playerId = m.playerId;
+        c.welcomeBytes = data.byteLength;
         if (decodeAll) decoder = new SnapshotDecoder(snapshotFormatFromSpec(m.scenario.bounds, m.snapshotFormat));
         resolve();
       }
       if (m.type === 'snapshot') {
         const header = readSnapshotHeader(m.bytes);
+        if (c.firstSnapshotBytes === 0) c.firstSnapshotBytes = data.byteLength;
         if (decoder) decoder.decode(m.bytes); // client 1 decodes everything (a real client's work); others only ack
         c.lastTick = header.tick;
         if (c.measuring) {
@@ -148,6 +152,8 @@ const result = {
   snapshotKbpsPerClientMean: Math.round(mean(per.map((p) => p.snapshotKbps))),
   snapshotsPerClientPerSecond: Math.round((mean(per.map((p) => p.snapshots)) / elapsedS) * 10) / 10,
   fullSnapshots: per.reduce((a, p) => a + p.full, 0),
+  welcomeBytes: clients[0].welcomeBytes,
+  firstFullSnapshotBytes: clients[0].firstSnapshotBytes,
   tickMs: { mean: +mean(tickMs).toFixed(3), p50: +quantile(tickMs, 0.5).toFixed(3), p99: +quantile(tickMs, 0.99).toFixed(3), max: +(tickMs.at(-1) ?? 0).toFixed(3) },
   physicsStepMs: { mean: +mean(stepMs).toFixed(3), p50: +quantile(stepMs, 0.5).toFixed(3), p99: +quantile(stepMs, 0.99).toFixed(3) },
   overrunsOver16_7ms: tickMs.filter((t) => t > 1000 / 60).length,
@@ -158,6 +164,7 @@ else {
   console.log(`  ticks: ${ticksRun} (${result.tickRateAchievedHz} Hz achieved)`);
   console.log(`  snapshot: ${result.bytesPerSnapshotMean} bytes mean (${result.snapshotsPerClientPerSecond}/s per client, ${result.fullSnapshots} full)`);
   console.log(`  per client: ${result.kbpsPerClientMean} kbps total, ${result.snapshotKbpsPerClientMean} kbps snapshots`);
+  console.log(`  on join: welcome ${result.welcomeBytes} bytes (scene + ${result.bodies} descriptors), first (full) snapshot ${result.firstFullSnapshotBytes} bytes`);
   console.log(`  tick: mean ${result.tickMs.mean} ms, p50 ${result.tickMs.p50}, p99 ${result.tickMs.p99}, max ${result.tickMs.max}; physics step mean ${result.physicsStepMs.mean} ms, p99 ${result.physicsStepMs.p99}`);
   console.log(`  ticks over 16.7 ms: ${result.overrunsOver16_7ms}`);
 }
