@@ -11,7 +11,7 @@ export const FIGURES: readonly FigureSpec[] = Object.freeze([
     title: 'tick overhead',
     detailKey: 'tickOverhead',
     headlineKeys: ['tickOverheadRatio16', 'tickOverheadP99Ratio16'],
-    timeLimitMs: (quick: boolean) => (quick ? min(1.5) : min(5)),
+    timeLimitMs: (quick: boolean) => (quick ? min(3) : min(5)),
     module: 'figures/tick-overhead.ts',
   },
   {
@@ -19,7 +19,7 @@ export const FIGURES: readonly FigureSpec[] = Object.freeze([
     title: 'bandwidth',
     detailKey: 'bandwidth',
     headlineKeys: ['kbpsPerClient60Hz', 'kbpsPerClient20Hz', 'naiveKbps60Hz', 'colyseusKbps60Hz'],
-    timeLimitMs: (quick: boolean) => (quick ? min(1) : min(3)),
+    timeLimitMs: (quick: boolean) => (quick ? min(3) : min(3)),
     module: 'figures/bandwidth.ts',
   },
   {
@@ -27,7 +27,7 @@ export const FIGURES: readonly FigureSpec[] = Object.freeze([
     title: 'clients per core',
     detailKey: 'clientsPerCoreDetail',
     headlineKeys: ['clientsPerCore'],
-    timeLimitMs: (quick: boolean) => (quick ? min(1) : min(4)),
+    timeLimitMs: (quick: boolean) => (quick ? min(3) : min(4)),
     module: 'figures/clients-per-core.ts',
   },
   {
@@ -35,7 +35,7 @@ export const FIGURES: readonly FigureSpec[] = Object.freeze([
     title: 'input latency',
     detailKey: 'inputLatency',
     headlineKeys: ['inputLatencyTicks'],
-    timeLimitMs: (quick: boolean) => (quick ? min(0.75) : min(1.5)),
+    timeLimitMs: (quick: boolean) => (quick ? min(3) : min(3)),
     module: 'figures/input-latency.ts',
   },
   {
@@ -43,7 +43,7 @@ export const FIGURES: readonly FigureSpec[] = Object.freeze([
     title: 'replay',
     detailKey: 'replay',
     headlineKeys: ['replayRatio'],
-    timeLimitMs: (quick: boolean) => (quick ? min(1) : min(3)),
+    timeLimitMs: (quick: boolean) => (quick ? min(3) : min(3)),
     module: 'figures/replay.ts',
   },
   {
@@ -51,7 +51,7 @@ export const FIGURES: readonly FigureSpec[] = Object.freeze([
     title: 'determinism cost',
     detailKey: 'determinismCost',
     headlineKeys: ['hashMsPerTick1000', 'checkpointSaveMs1000', 'checkpointRestoreMs1000'],
-    timeLimitMs: (quick: boolean) => (quick ? min(1) : min(2)),
+    timeLimitMs: (quick: boolean) => (quick ? min(3) : min(3)),
     module: 'figures/determinism-cost.ts',
   },
   {
@@ -60,7 +60,7 @@ export const FIGURES: readonly FigureSpec[] = Object.freeze([
     detailKey: 'enginePeer',
     headlineKeys: [],
     peersOnly: true,
-    timeLimitMs: (quick: boolean) => (quick ? min(1) : min(2)),
+    timeLimitMs: (quick: boolean) => (quick ? min(3) : min(3)),
     module: 'figures/engine-peer.ts',
   },
   {
@@ -68,7 +68,7 @@ export const FIGURES: readonly FigureSpec[] = Object.freeze([
     title: 'start-up',
     detailKey: 'startup',
     headlineKeys: ['startupMs'],
-    timeLimitMs: (quick: boolean) => (quick ? min(0.75) : min(1.5)),
+    timeLimitMs: (quick: boolean) => (quick ? min(3) : min(3)),
     module: 'figures/startup.ts',
   },
 ]);
