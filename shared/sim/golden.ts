@@ -1,5 +1,5 @@
 // Golden runs: a scenario's scripted reference run (its golden tick count, its number of bots, a fixed seed) and the
-// stored result `scenarios/<name>.golden.json`. Only scripts/update-goldens.ts --write ever rewrites those files.
+// stored result `scenarios/<name>.golden.json`. Only `taos-physics goldens --write` (npm run goldens -- --write) ever rewrites those files.
 import type { PhysicsWorldOptions } from '../physics/index.ts';
 import { BotScript } from './bots.ts';
 import type { ScenarioDefinition } from './scenario.ts';

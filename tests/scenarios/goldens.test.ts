@@ -1,5 +1,5 @@
 // Checks every registered scenario against its stored golden (scenarios/<name>.golden.json): the scripted bot run
-// of golden.ticks ticks must end on the stored state hash. Rewrite goldens only with scripts/update-goldens.ts --write.
+// of golden.ticks ticks must end on the stored state hash. Rewrite goldens only with `npm run goldens -- --write`.
 import { existsSync, readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
@@ -8,7 +8,7 @@ import { installedJoltVersion } from '../../server/log/jolt-version.ts';
 import { listScenarios } from '../../scenarios/index.ts';
 import { GOLDEN_SEED, parseGoldenFile, runGolden } from '../../shared/sim/golden.ts';
 
-const FIX = 'node_modules/.bin/node scripts/update-goldens.ts --write <name> (only when the change is intended)';
+const FIX = 'npx taos-physics goldens --write --scenario <name> (only when the change is intended)';
 
 describe('goldens', () => {
   it('has scenarios to check', () => {
