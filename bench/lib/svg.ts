@@ -24,16 +24,17 @@ export function escapeXml(text: string): string {
   return text.replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;').replace(/"/g, '&quot;');
 }
 
-/** A number as a short label: 3 significant digits, thousands as "12.3k". */
+/** A number as a short label: about 3 significant digits, no trailing zeros, thousands as "12.3k". */
 export function formatValue(value: number): string {
+  const trim = (text: string): string => (text.includes('.') ? text.replace(/\.?0+$/, '') : text);
   const a = Math.abs(value);
   if (a >= 100000) return `${(value / 1000).toFixed(0)}k`;
-  if (a >= 10000) return `${(value / 1000).toFixed(1)}k`;
+  if (a >= 10000) return `${trim((value / 1000).toFixed(1))}k`;
   if (a >= 100) return value.toFixed(0);
-  if (a >= 10) return value.toFixed(1);
-  if (a >= 1) return value.toFixed(2);
+  if (a >= 10) return trim(value.toFixed(1));
+  if (a >= 1) return trim(value.toFixed(2));
   if (a === 0) return '0';
-  return value.toPrecision(2);
+  return trim(value.toPrecision(2));
 }
 
 interface Axis {
