@@ -1,5 +1,5 @@
-// Structured logging for the server: a pino logger (JSON lines) with a level, silent in tests, and a flush that
-// resolves once buffered lines are written (used by shutdown).
+// Structured logging for the server: a pino logger (JSON lines, written synchronously: the server logs events, not
+// per-tick data, so nothing is ever lost at exit) with a level, silent in tests, and a flush used by shutdown.
 import { pino, type Logger } from 'pino';
 
 export type { Logger } from 'pino';
@@ -22,7 +22,7 @@ export function defaultLogLevel(): string {
 /** Creates the server's logger. */
 export function createLogger(opts: LoggerOptions = {}): Logger {
   const level = opts.level ?? defaultLogLevel();
-  const destination = pino.destination({ dest: opts.fd ?? 1, sync: false });
+  const destination = pino.destination({ dest: opts.fd ?? 1, sync: true });
   return pino({ level, base: { service: 'taos-physics' } }, destination);
 }
 
@@ -31,7 +31,7 @@ export function silentLogger(): Logger {
   return pino({ level: 'silent' });
 }
 
-/** Resolves once the logger's buffered lines have been written (never rejects). */
+/** Resolves once the logger's lines have been handed to the OS (never rejects). */
 export function flushLogger(logger: Logger): Promise<void> {
   return new Promise((resolve) => {
     try {
