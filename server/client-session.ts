@@ -17,7 +17,6 @@ import {
   type ServerMessage,
   type SnapshotFormat,
 } from '../shared/protocol/index.ts';
-import { BodyFlag } from '../shared/physics/index.ts';
 import type { BodyDescriptor, SimEvent } from '../shared/sim/types.ts';
 import type { Clock, TimerHandle } from './clock.ts';
 import { CloseCode, type ServerConnection } from './connection.ts';
@@ -265,11 +264,12 @@ export class ClientSession implements RoomMember {
     this.ctx.logger.info({ session: this.id, remote: this.conn.remote, room: room.id, playerId: joined.playerId, name }, 'player joined');
   }
 
+  /** Every live body snapshots will carry: non-static ones and statics spawned after the scene was built. */
   private liveDynamicDescriptors(room: Room): BodyDescriptor[] {
     const read = room.sim.readBodyStates();
     const out: BodyDescriptor[] = [];
     for (let i = 0; i < read.count; i++) {
-      if ((read.flags[i] & BodyFlag.Static) !== 0) continue;
+      if (room.isSceneStatic(read.ids[i])) continue;
       const d = room.sim.bodyDescriptor(read.ids[i]);
       if (d) out.push(d);
     }
@@ -330,12 +330,12 @@ export class ClientSession implements RoomMember {
       m.snapshotsSkipped.inc();
       return;
     }
+    const room = this.room;
     let q = frame.cache.get('quantized') as QuantizedFrame | undefined;
     if (!q) {
-      q = quantizeFrame(this.encoder.format, frame.tick, frame.bodies, frame.characters);
+      q = quantizeFrame(this.encoder.format, frame.tick, frame.bodies, frame.characters, { includeStatic: (id) => !room.isSceneStatic(id) });
       frame.cache.set('quantized', q);
     }
-    const room = this.room;
     const encoded = this.encoder.encode(q, (id) => room.sim.bodyDescriptor(id) ?? undefined);
     const size = this.send({ type: 'snapshot', bytes: encoded.bytes, descriptors: encoded.descriptors });
     this.stats.snapshotsSent++;

@@ -1,6 +1,6 @@
 // One room: a Simulation stepped by its own TickClock, its players and their input buffers, the exact per-tick input
 // record (stepped, recorded), and delivery of each tick's events and world frames to its members. Protocol-agnostic.
-import { BODY_STATE_STRIDE, type Vec3Like } from '../shared/physics/index.ts';
+import { BODY_STATE_STRIDE, BodyFlag, type Vec3Like } from '../shared/physics/index.ts';
 import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '../shared/sim/types.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
@@ -145,6 +145,9 @@ export class Room {
   private closedReason: string | null = null;
   private snapshotAccumulator = 0;
   private lastBodyCount = 0;
+  // Static bodies the scene was built with: drawn from the welcome, never in snapshots. Statics spawned later
+  // (streamed terrain) travel in snapshots instead, so clients already in the room learn about them.
+  private readonly sceneStatics = new Set<number>();
   private readonly tickListeners = new Set<(record: TickInputRecord, events: readonly SimEvent[]) => void>();
   private readonly emptyListeners = new Set<(empty: boolean) => void>();
   private readonly closeListeners = new Set<(reason: string) => void>();
@@ -161,7 +164,9 @@ export class Room {
     this.bounds = opts.bounds ?? { min: { x: -500, y: -500, z: -500 }, max: { x: 500, y: 500, z: 500 } };
     this.params = opts.params;
     this.seed = opts.seed;
-    this.lastBodyCount = sim.readBodyStates().count;
+    const initial = sim.readBodyStates();
+    this.lastBodyCount = initial.count;
+    for (let i = 0; i < initial.count; i++) if ((initial.flags[i] & BodyFlag.Static) !== 0) this.sceneStatics.add(initial.ids[i]);
     this.tickClock = new TickClock({
       clock: opts.clock,
       tickRateHz: TICK_RATE_HZ,
@@ -256,9 +261,14 @@ export class Room {
     return result;
   }
 
-  /** The static geometry and descriptors a client needs to draw the scene. */
+  /** Whether a body is part of the scene's built static geometry (sent in the welcome, not in snapshots). */
+  isSceneStatic(bodyId: number): boolean {
+    return this.sceneStatics.has(bodyId);
+  }
+
+  /** Descriptors of the scene's built static geometry still present (a welcome's staticBodies). */
   staticDescriptors(): BodyDescriptor[] {
-    return this.sim.staticDescriptors();
+    return this.sim.staticDescriptors().filter((d) => this.sceneStatics.has(d.id));
   }
 
   /** Calls `fn` after every tick with the exact record stepped and the tick's events. Returns an unsubscribe. */
@@ -318,6 +328,7 @@ export class Room {
   }
 
   private deliver(tick: number, events: readonly SimEvent[]): void {
+    for (const e of events) if (e.type === 'bodyRemoved') this.sceneStatics.delete(e.bodyId); // its id may be reused
     const members = [...this.players.values()];
     if (events.length > 0) for (const p of members) this.safely(p, () => p.member.deliverEvents(tick, events));
     this.snapshotAccumulator += this.opts.snapshotRateHz;

@@ -4,7 +4,7 @@ import { afterEach, describe, expect, it } from 'vitest';
 import { CharacterQ, createSnapshotFormat, dequantizeAxis, framesEqual, quantizeFrame, readSnapshotHeader, type QuantizedFrame } from '../../shared/protocol/index.ts';
 import { NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input.ts';
 import { startHarness, type Harness, type TestClient } from './harness.ts';
-import { stripScenario, TRIGGER_MIN_X } from './test-scenarios.ts';
+import { STREAM_ADD_TICK, STREAM_REMOVE_TICK, streamScenario, stripScenario, TRIGGER_MIN_X } from './test-scenarios.ts';
 
 let h: Harness | null = null;
 afterEach(async () => {
@@ -99,6 +99,22 @@ describe('GameServer (in-process)', () => {
     expect(h.room().clientCount).toBe(1);
     const leaveRecord = h.history().records.find((r) => r.leaves.includes(a.playerId));
     expect(leaveRecord).toBeDefined();
+  });
+
+  it('delivers static bodies spawned after the welcome (streamed terrain) to clients in the room and to late joiners', async () => {
+    h = await startHarness({ scenarios: [streamScenario] });
+    const early = await h.join('early');
+    expect(early.welcome?.staticBodies.map((d) => d.shape.kind)).toEqual(['box']);
+    h.ticks(STREAM_ADD_TICK + 10);
+    const tile = early.ofType('snapshot').flatMap((m) => m.descriptors).find((d) => d.motion === 'static');
+    expect(tile).toMatchObject({ shape: { kind: 'box' }, position: { x: 5, y: 0.5, z: 5 } });
+    expect(Array.from(early.latestFrame().bodyIds)).toContain(tile!.id);
+    const late = await h.join('late');
+    expect(late.welcome?.staticBodies.map((d) => d.id)).not.toContain(tile!.id);
+    expect(late.welcome?.dynamicBodies.map((d) => d.id)).toContain(tile!.id);
+    h.ticks(STREAM_REMOVE_TICK - STREAM_ADD_TICK);
+    expect(Array.from(early.latestFrame().bodyIds)).not.toContain(tile!.id);
+    expect(late.events).toContainEqual(expect.objectContaining({ type: 'bodyRemoved', bodyId: tile!.id }));
   });
 
   it('refuses connections past the server\'s limit with a bye saying why', async () => {

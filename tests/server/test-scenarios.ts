@@ -42,3 +42,31 @@ export const emptyScenario: ScenarioDefinition = {
     return { spawnPoint: () => ({ x: 0, y: 0.05, z: 0 }) };
   },
 };
+
+/** Ticks at which streamScenario adds, then removes, a static block (like streamed terrain tiles). */
+export const STREAM_ADD_TICK = 20;
+export const STREAM_REMOVE_TICK = 200;
+
+/** Ground built up front; a static block spawned during a tick and removed later. */
+export const streamScenario: ScenarioDefinition = {
+  name: 'test-stream',
+  description: 'A static block streams in and out.',
+  params: {},
+  bounds: { min: { x: -20, y: -5, z: -20 }, max: { x: 20, y: 20, z: 20 } },
+  golden: { ticks: 60, bots: 1 },
+  build(ctx) {
+    ctx.spawn({ kind: 'box', halfExtents: { x: 15, y: 0.5, z: 15 } }, { x: 0, y: -0.5, z: 0 }, null, { motion: 'static', name: 'ground' });
+    let block = 0;
+    return {
+      spawnPoint: () => ({ x: 0, y: 0.05, z: 0 }),
+      onTick(c) {
+        if (c.tick === STREAM_ADD_TICK) block = c.spawn({ kind: 'box', halfExtents: { x: 1, y: 0.5, z: 1 } }, { x: 5, y: 0.5, z: 5 }, null, { motion: 'static', name: 'tile' }).id;
+        if (c.tick === STREAM_REMOVE_TICK && block) c.remove(block);
+      },
+      saveState: () => [block],
+      restoreState: (s) => {
+        block = s[0];
+      },
+    };
+  },
+};
