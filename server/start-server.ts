@@ -147,7 +147,9 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     throw new Error(e.code === 'EADDRINUSE' ? `port ${port} on ${host} is already in use (pick another with --port)` : `cannot listen on ${host}:${port}: ${e.message}`, { cause: error });
   }
   const address = http.address() as AddressInfo;
-  const shownHost = host.includes(':') ? `[${host}]` : host;
+  // Bound to every interface: show the loopback address, which a browser on this machine can open.
+  const reachable = host === '0.0.0.0' ? '127.0.0.1' : host === '::' ? '::1' : host;
+  const shownHost = reachable.includes(':') ? `[${reachable}]` : reachable;
   const url = `http://${shownHost}:${address.port}/`;
   const wsUrl = `ws://${shownHost}:${address.port}/`;
   logger.info({ url, scenario: scenarioName, snapshotRateHz: game.snapshotRateHz, recordDir: opts.recordDir ?? null }, 'server listening');
