@@ -69,7 +69,7 @@ async function replayPass(file: string, ticks: number): Promise<{ wallMs: number
 }
 
 async function run(opts: { quick: boolean; log(m: string): void }): Promise<FigureOutput> {
-  const ticks = opts.quick ? 360 : 1200;
+  const ticks = opts.quick ? 300 : 1200;
   const passes = opts.quick ? 1 : 3;
   const dir = await mkdtemp(join(tmpdir(), 'taos-bench-replay-'));
   try {

@@ -41,9 +41,9 @@ async function warmStart(scene: Scene, log: (m: string) => void): Promise<Uint8A
 }
 
 async function measure(scene: Scene, startBytes: Uint8Array | null, clients: number, quick: boolean, log: (m: string) => void): Promise<ConfigResult> {
-  const warmTicks = quick ? 20 : 40;
-  const batches = quick ? 6 : 16;
-  const batchTicks = quick ? 10 : 15;
+  const warmTicks = quick ? 15 : 40;
+  const batches = quick ? 5 : 16;
+  const batchTicks = quick ? 8 : 15;
   const rig = await startServerRig({ scenario: scene.scenario, params: scene.params, startBytes, clients, snapshotRateHz: SNAPSHOT_RATE_HZ, oneWayTicks: ONE_WAY_TICKS, hashEveryTicks: 1 });
   try {
     for (let i = 0; i < warmTicks; i++) {
@@ -135,7 +135,7 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
       configs: results.map((r) => ({ ...r, medianRatio: r.medianRatio === null ? null : round(r.medianRatio, 3), p99Ratio: r.p99Ratio === null ? null : round(r.p99Ratio, 3) })),
     },
     rows,
-    charts: [{ title: 'Tick overhead: full server tick / raw Jolt step, same ticks', unit: '× raw step', bars, goal: GOAL }],
+    charts: [{ title: 'Tick overhead: full server tick / raw Jolt step, same ticks', unit: '× raw step (log)', log: true, bars, goal: GOAL }],
     notes: [
       `Raw: bare PhysicsWorld.stepFixed() from a fast checkpoint, rolled back; full: the same ticks through the real GameServer, Room and ClientSessions (tick-scheduled in-process links, ${ONE_WAY_TICKS} ticks each way), snapshots at ${SNAPSHOT_RATE_HZ} Hz, the room's input log written with a state hash every tick. Batches alternate raw and full; the first tick of each batch (right after a checkpoint save or restore) is dropped on both sides.`,
       'Headline keys take the larger of the two scenes at 16 clients. Socket writes are not in the full tick here (the clients-per-core figure covers real sockets).',

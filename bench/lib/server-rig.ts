@@ -2,6 +2,7 @@
 // input-log writer, driven tick by tick. Clients sit behind tick-scheduled links (inputs and acks arrive a fixed
 // number of ticks after they are sent); the server's part of a tick (taking arrived messages + Room.tickOnce) is
 // what `serverTick()` runs, and the clients' part (`clientTick()`) runs outside it.
+import '../../server/physics-node.ts';
 import { mkdtemp, rm } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
