@@ -344,6 +344,12 @@ export class ClientSession implements RoomMember {
     m.snapshotsSent.inc({ kind: encoded.baselineTick === null ? 'full' : 'delta' });
   }
 
+  /** The room dropped this client after a failed delivery (RoomMember). */
+  removed(reason: string): void {
+    this.room = null;
+    this.end(ByeReason.Kicked, reason, CloseCode.InternalError);
+  }
+
   /** The room closed under this client (RoomMember). */
   roomClosed(reason: string): void {
     this.room = null;

@@ -58,6 +58,8 @@ export interface RoomMember {
   deliverFrame(frame: WorldFrame): void;
   /** The room has closed; the member is no longer in it. */
   roomClosed(reason: string): void;
+  /** The room removed this member (its delivery failed); the room goes on. */
+  removed(reason: string): void;
 }
 
 /** A refusal with a stable code the session forwards to the client. */
@@ -360,6 +362,11 @@ export class Room {
     } catch (error) {
       this.opts.logger.error({ room: this.id, playerId: p.playerId, err: error }, 'delivery to a member failed; removing it');
       this.leave(p.playerId);
+      try {
+        p.member.removed(`internal error delivering to you: ${error instanceof Error ? error.message : String(error)}`);
+      } catch {
+        // already gone; the room must not care
+      }
     }
   }
 

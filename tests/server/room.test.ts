@@ -58,6 +58,7 @@ class Member implements RoomMember {
   readonly events: Array<[number, readonly SimEvent[]]> = [];
   readonly frames: WorldFrame[] = [];
   closedWith: string | null = null;
+  removedWith: string | null = null;
   throwOnFrame = false;
   deliverEvents(tick: number, events: readonly SimEvent[]): void {
     this.events.push([tick, events]);
@@ -68,6 +69,9 @@ class Member implements RoomMember {
   }
   roomClosed(reason: string): void {
     this.closedWith = reason;
+  }
+  removed(reason: string): void {
+    this.removedWith = reason;
   }
 }
 
@@ -188,6 +192,7 @@ describe('Room', () => {
     clock.advance(5 * TICK_MS);
     expect(room.clientCount).toBe(1);
     expect(good.frames.length).toBe(6);
+    expect(bad.removedWith).toMatch(/member broke/);
   });
 
   it('slows down instead of spiralling when ticks take longer than a period, and reports it', async () => {
