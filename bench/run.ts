@@ -1,7 +1,7 @@
 // `npm run bench`: runs every figure, each in its own Node process, prints one table and writes
 // bench/results/latest.{json,md} plus one SVG chart per figure. Flags: --quick, --json, --peers, --only NAME, --out DIR.
 import { spawn } from 'node:child_process';
-import { mkdir, mkdtemp, readFile, rm, writeFile } from 'node:fs/promises';
+import { mkdir, mkdtemp, readdir, readFile, rm, writeFile } from 'node:fs/promises';
 import { cpus, loadavg, platform, release, tmpdir, totalmem } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -71,6 +71,12 @@ async function writeResults(outDir: string, runs: readonly FigureRun[], results:
     const charts = (run.output?.charts ?? []).map((_, i) => `${run.spec.name}${i === 0 ? '' : `-${i + 1}`}.svg`);
     for (let i = 0; i < charts.length; i++) await writeFile(join(outDir, charts[i]), renderChartSvg(run.output!.charts[i]));
     sections.push({ title: run.spec.title, charts, notes: run.output?.notes ?? [], status: run.status });
+  }
+  // Charts of figures that did not run this time would describe another run: remove them.
+  const written = new Set(sections.flatMap((s) => s.charts));
+  for (const name of await readdir(outDir)) {
+    const figure = FIGURES.find((f) => name === `${f.name}.svg` || new RegExp(`^${f.name}-\\d+\\.svg$`).test(name));
+    if (figure && !written.has(name)) await rm(join(outDir, name));
   }
   await writeFile(join(outDir, 'latest.json'), `${JSON.stringify(results, null, 2)}\n`);
   await writeFile(join(outDir, 'latest.md'), renderMarkdownPage({ ...page, rows: allRows(runs), sections }));

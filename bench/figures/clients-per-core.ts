@@ -93,9 +93,9 @@ async function step(server: Child, wsUrl: string, clients: number, settleMs: num
 }
 
 async function run(opts: { quick: boolean; log(m: string): void }): Promise<FigureOutput> {
-  const ladder = opts.quick ? [16, 64, 256] : [8, 16, 32, 48, 64, 96, 128, 192, 256, 320, 384, 512];
-  const settleMs = opts.quick ? 1500 : 3000;
-  const windowMs = opts.quick ? 3000 : 8000;
+  const ladder = opts.quick ? [16, 32, 64, 128, 256] : [8, 16, 32, 48, 64, 96, 128, 192, 256, 320, 384, 512];
+  const settleMs = opts.quick ? 1000 : 3000;
+  const windowMs = opts.quick ? 2500 : 8000;
   const maxClients = ladder[ladder.length - 1];
   const server = startNode(SERVER, [CROWD_SCENE.scenario, JSON.stringify(CROWD_SCENE.params), String(SNAPSHOT_RATE_HZ), String(maxClients)], { stdin: true });
   try {

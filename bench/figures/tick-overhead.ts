@@ -135,7 +135,24 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
       configs: results.map((r) => ({ ...r, medianRatio: r.medianRatio === null ? null : round(r.medianRatio, 3), p99Ratio: r.p99Ratio === null ? null : round(r.p99Ratio, 3) })),
     },
     rows,
-    charts: [{ title: 'Tick overhead: full server tick / raw Jolt step, same ticks', unit: '× raw step (log)', log: true, bars, goal: GOAL }],
+    charts: [
+      { title: 'Tick overhead: full server tick / raw Jolt step, same ticks', unit: '× raw step (log)', log: true, bars, goal: GOAL },
+      {
+        title: 'Where the full tick goes at 16 clients (median ms per part)',
+        unit: 'ms',
+        bars: at16.flatMap((r) => {
+          const p = r.partsMedianMs;
+          return [
+            { label: `${r.scene}: raw Jolt step`, value: r.rawMs.median, series: 'raw' as const },
+            { label: `${r.scene}: Jolt step in the tick`, value: p.physicsStep, series: 'other' as const },
+            { label: `${r.scene}: rest of Simulation.step`, value: Math.max(0, p.simStep - p.physicsStep), series: 'ours' as const },
+            { label: `${r.scene}: state hash`, value: p.stateHash, series: 'ours' as const },
+            { label: `${r.scene}: snapshots (16 clients)`, value: p.snapshots, series: 'ours' as const },
+            { label: `${r.scene}: inputs, acks, events, other`, value: p.messagesIn + p.events + Math.max(0, p.other), series: 'ours' as const },
+          ];
+        }),
+      },
+    ],
     notes: [
       `Raw: bare PhysicsWorld.stepFixed() from a fast checkpoint, rolled back; full: the same ticks through the real GameServer, Room and ClientSessions (tick-scheduled in-process links, ${ONE_WAY_TICKS} ticks each way), snapshots at ${SNAPSHOT_RATE_HZ} Hz, the room's input log written with a state hash every tick. Batches alternate raw and full; the first tick of each batch (right after a checkpoint save or restore) is dropped on both sides.`,
       'Headline keys take the larger of the two scenes at 16 clients. Socket writes are not in the full tick here (the clients-per-core figure covers real sockets).',
