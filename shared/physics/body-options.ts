@@ -19,21 +19,11 @@ export function applyBodyOptions(J: J, settings: InstanceType<J['BodyCreationSet
     settings.mOverrideMassProperties = J.EOverrideMassProperties_CalculateInertia;
     settings.mMassPropertiesOverride.mMass = opts.massKg;
   }
-  if (isSensor) {
-    settings.mIsSensor = true;
-    settings.mCollideKinematicVsNonDynamic = true; // so kinematic / static overlappers register too
-  }
+  // Jolt 5.6 pairs a kinematic body with any sensor by itself, so no mCollideKinematicVsNonDynamic here: that flag
+  // would make kinematic sensors report the static level geometry they overlap.
+  if (isSensor) settings.mIsSensor = true;
   if (opts.linearVelocity) settings.mLinearVelocity.Set(opts.linearVelocity.x, opts.linearVelocity.y, opts.linearVelocity.z);
   if (opts.angularVelocity) settings.mAngularVelocity.Set(opts.angularVelocity.x, opts.angularVelocity.y, opts.angularVelocity.z);
-}
-
-/** Validates an optional integer option within [min, max]. */
-export function intOption(value: number | undefined, fallback: number, min: number, max: number, name: string): number {
-  if (value === undefined) return fallback;
-  if (!Number.isInteger(value) || value < min || value > max) {
-    throw new Error(`PhysicsWorld.create: ${name} must be an integer in [${min}, ${max}], got ${String(value)}`);
-  }
-  return value;
 }
 
 /** The motion kind from `motion`, or the legacy `dynamic` flag. */

@@ -1,5 +1,5 @@
-// Constraint helpers in world space: point (ball-and-socket), hinge, distance and slider links between two bodies.
-// Each builds its Jolt settings, hands them to PhysicsWorld.addConstraint (which consumes them) and frees its temporaries.
+// Constraints in world space: point (ball-and-socket), hinge, distance and slider helpers that build Jolt settings
+// and hand them to PhysicsWorld.addConstraint, and the registry that owns each world's constraints until removal.
 import type { BodyHandle } from './body-handle.ts';
 import type { JoltModule } from './jolt-backend.ts';
 import type { PhysicsWorld } from './physics-world.ts';
@@ -104,4 +104,74 @@ export function sliderLink(world: PhysicsWorld, a: BodyHandle, b: BodyHandle, wo
     settings.mLimitsMax = limits.maxMetres;
   }
   return world.addConstraint(settings, a, b);
+}
+
+/** A constraint the world tracks: the Jolt object (one reference is ours) and the stable ids it joins. */
+interface TrackedConstraint {
+  raw: Constraint;
+  bodyA: number;
+  bodyB: number;
+}
+
+/** The constraints of one world: created from settings (consumed), removed with their bodies or by clear(). */
+export class ConstraintRegistry {
+  private readonly J: JoltModule;
+  private readonly system: InstanceType<JoltModule['PhysicsSystem']>;
+  private readonly tracked: TrackedConstraint[] = [];
+
+  constructor(J: JoltModule, system: InstanceType<JoltModule['PhysicsSystem']>) {
+    this.J = J;
+    this.system = system;
+  }
+
+  /** Creates and adds a constraint from `settings` (destroyed here) between two checked bodies. */
+  add(settings: InstanceType<JoltModule['TwoBodyConstraintSettings']>, a: BodyHandle, b: BodyHandle): Constraint {
+    const constraint = settings.Create(a.raw, b.raw); // ref count 0 until the AddRef below
+    this.J.destroy(settings);
+    constraint.AddRef(); // our reference, so the handle outlives RemoveConstraint until we Release it
+    this.system.AddConstraint(constraint);
+    this.tracked.push({ raw: constraint, bodyA: a.id, bodyB: b.id });
+    return constraint;
+  }
+
+  /** Removes one constraint; false if it is not one of ours. */
+  remove(constraint: Constraint): boolean {
+    const ptr = this.J.getPointer(constraint);
+    const i = this.tracked.findIndex((c) => this.J.getPointer(c.raw) === ptr);
+    if (i < 0) return false;
+    this.drop(i);
+    return true;
+  }
+
+  /** Removes every constraint attached to body `id`; returns how many. */
+  removeFor(id: number): number {
+    let n = 0;
+    for (let i = this.tracked.length - 1; i >= 0; i--) {
+      const c = this.tracked[i];
+      if (c.bodyA === id || c.bodyB === id) {
+        this.drop(i);
+        n++;
+      }
+    }
+    return n;
+  }
+
+  /** Removes all constraints, newest first; returns how many. */
+  clear(): number {
+    const n = this.tracked.length;
+    for (let i = n - 1; i >= 0; i--) this.drop(i);
+    return n;
+  }
+
+  private drop(i: number): void {
+    const c = this.tracked[i];
+    this.tracked.splice(i, 1);
+    this.system.RemoveConstraint(c.raw);
+    c.raw.Release(); // our reference: the constraint is freed here
+  }
+
+  /** Number of live constraints. */
+  get size(): number {
+    return this.tracked.length;
+  }
 }

@@ -1,41 +1,29 @@
 // PhysicsWorld: one Jolt PhysicsSystem, its body registry with stable ids, the factories, stepping, sensors and
 // limits. Owns every Jolt object it creates; callers only ever see plain copies and BodyHandles.
 import { BodyHandle, type BodyRole, type JoltBody } from './body-handle.ts';
-import { loadJolt, type JoltModule, type PhysicsInitOptions } from './jolt-backend.ts';
+import { loadJolt, type JoltModule } from './jolt-backend.ts';
 import { assertGroupBits, CollisionLayer, createLayerFilters, packObjectLayer, type LayerFilters } from './layers.ts';
-import { applyBodyOptions, flattenPoints, intOption, resolveMotion, validateBodyOptions } from './body-options.ts';
-import { pointLink } from './constraints.ts';
+import { applyBodyOptions, flattenPoints, resolveMotion, validateBodyOptions } from './body-options.ts';
+import * as motion from './body-motion.ts';
+import { ConstraintRegistry, pointLink } from './constraints.ts';
 import { RayQueries, type RayHit } from './queries.ts';
 import { SensorHub, type SensorEvent } from './sensors.ts';
 import { BodySlots } from './body-slots.ts';
 import { BodyStateReader, type BodyStates } from './body-state-reader.ts';
-import { buildShape, checkQuat, checkVec3, estimateShapeBytes, STATIC_ONLY_KINDS, type JoltShape, type ShapeSpec } from './shapes.ts';
+import { buildValidatedShape, checkQuat, checkVec3, estimateShapeBytes, STATIC_ONLY_KINDS, validateShapeSpec, type JoltShape, type ShapeSpec } from './shapes.ts';
 import { IDENTITY_QUAT, type BodyOptions, type MotionKind, type QuatLike, type Vec3Like } from './types.ts';
+import { ensureHeapRoom, ensureRoomForWorld, resolveWorldLimits, StepBudget, type PhysicsWorldOptions, type WorldLimits } from './world-limits.ts';
 
-/** Options of PhysicsWorld.create: how to load Jolt plus the world's fixed limits. */
-export interface PhysicsWorldOptions extends PhysicsInitOptions {
-  /** Most bodies the world holds (Jolt's mMaxBodies); adding more throws. Default 10240. */
-  maxBodies?: number;
-  /** Broad-phase pair buffer (mMaxBodyPairs). Default 16384. */
-  maxBodyPairs?: number;
-  /** Contact constraint buffer (mMaxContactConstraints). Default 8192 (the fixed 10 MB temp allocator caps it). */
-  maxContactConstraints?: number;
-  /** Free WASM heap kept in reserve for stepping; a creation that would eat into it throws. Default 8 MiB. */
-  minFreeHeapBytes?: number;
-  /** Gravity (m/s²); default (0, -9.81, 0). */
-  gravity?: Vec3Like;
-}
+export type { PhysicsWorldOptions } from './world-limits.ts';
 
 /** The fixed tick the server runs: 60 Hz. */
 export const FIXED_DT_SECONDS = 1 / 60;
 const MAX_STEP_SECONDS = 1 / 30;
 const SUBSTEP_THRESHOLD_SECONDS = 1 / 55;
-/** Upper bound on maxContactConstraints: 16384 fits the 10 MB temp allocator for a 1000-box pile; 65536 aborts. */
-const MAX_CONTACT_CONSTRAINTS_LIMIT = 16384;
-const MAX_BODY_PAIRS_LIMIT = 65536;
+/** Heap bytes reserved per constraint (measured ≤ 700 B for a hinge). */
+const CONSTRAINT_HEAP_BYTES = 4096;
 
 type J = JoltModule;
-type TrackedConstraint = { raw: InstanceType<J['Constraint']>; bodyA: number; bodyB: number };
 
 /** A Jolt world with stable body ids; create it with `await PhysicsWorld.create()`. */
 export class PhysicsWorld {
@@ -52,7 +40,10 @@ export class PhysicsWorld {
   private readonly byJoltId = new Map<number, BodyHandle>();
   private readonly sensorJoltIds = new Set<number>();
   private sortedIds: number[] = [];
-  private readonly constraints = new Set<TrackedConstraint>();
+  private readonly constraints: ConstraintRegistry;
+  private readonly stepBudget: StepBudget;
+  /** Stable ids of linear-cast (CCD) bodies: each takes step memory (see world-limits.ts). */
+  private readonly ccdIds = new Set<number>();
   private readonly sensors: SensorHub;
   private nextBodyId = 1;
   private rays: RayQueries | null = null;
@@ -61,16 +52,15 @@ export class PhysicsWorld {
   /** @internal Per-world helpers (ray casts, characters) register cleanups here. */
   readonly disposers = new Set<() => void>();
 
-  private constructor(J: J, opts: PhysicsWorldOptions) {
+  private constructor(J: J, limits: WorldLimits, gravity: Vec3Like) {
     this.jolt = J;
-    this.maxBodies = intOption(opts.maxBodies, 10240, 1, 65536, 'maxBodies');
-    const maxBodyPairs = intOption(opts.maxBodyPairs, 16384, 64, MAX_BODY_PAIRS_LIMIT, 'maxBodyPairs');
-    const maxContacts = intOption(opts.maxContactConstraints, 8192, 64, MAX_CONTACT_CONSTRAINTS_LIMIT, 'maxContactConstraints');
-    this.minFreeHeapBytes = intOption(opts.minFreeHeapBytes, 8 * 1024 * 1024, 0, 64 * 1024 * 1024, 'minFreeHeapBytes');
+    this.maxBodies = limits.maxBodies;
+    this.minFreeHeapBytes = limits.minFreeHeapBytes;
+    this.stepBudget = new StepBudget(limits);
     const settings = new J.JoltSettings(); // freed once JoltInterface has copied it
-    settings.mMaxBodies = this.maxBodies;
-    settings.mMaxBodyPairs = maxBodyPairs;
-    settings.mMaxContactConstraints = maxContacts;
+    settings.mMaxBodies = limits.maxBodies;
+    settings.mMaxBodyPairs = limits.maxBodyPairs;
+    settings.mMaxContactConstraints = limits.maxContactConstraints;
     this.filters = createLayerFilters(J);
     settings.mObjectLayerPairFilter = this.filters.objectLayerPairFilter; // JoltInterface takes ownership
     settings.mBroadPhaseLayerInterface = this.filters.broadPhaseLayerInterface; // JoltInterface takes ownership
@@ -79,20 +69,28 @@ export class PhysicsWorld {
     J.destroy(settings);
     this.system = this.joltInterface.GetPhysicsSystem();
     this.bodyInterface = this.system.GetBodyInterface();
+    this.constraints = new ConstraintRegistry(J, this.system);
     this.slots = new BodySlots(J, this.bodyInterface, this.maxBodies); // owned here; disposed in destroy()
     this.stateReader = new BodyStateReader(J);
     this.sensors = new SensorHub(J, this.system, {
       stableIdOf: (joltId) => this.byJoltId.get(joltId)?.id,
       isSensorJoltId: (joltId) => this.sensorJoltIds.has(joltId),
+      isStaticJoltId: (joltId) => this.byJoltId.get(joltId)?.motion === 'static',
     });
-    const g = opts.gravity ?? { x: 0, y: -9.81, z: 0 };
-    this.setGravity(g.x, g.y, g.z);
+    this.setGravity(gravity.x, gravity.y, gravity.z);
   }
 
-  /** Loads Jolt (memoized) and builds a world. */
+  /**
+   * Loads Jolt (memoized) and builds a world. Throws a clear Error for bad limits, limits whose step could overflow
+   * Jolt's fixed temp allocator, or a heap too full for another world (~15 MB each at the defaults).
+   */
   static async create(opts: PhysicsWorldOptions = {}): Promise<PhysicsWorld> {
+    const limits = resolveWorldLimits(opts);
+    const gravity = opts.gravity ?? { x: 0, y: -9.81, z: 0 };
+    checkVec3(gravity, 'PhysicsWorld.create', 'gravity');
     const J = await loadJolt(opts);
-    return new PhysicsWorld(J, opts);
+    ensureRoomForWorld(J.JoltInterface.prototype.sGetFreeMemory(), limits);
+    return new PhysicsWorld(J, limits, gravity);
   }
 
   private live(): void {
@@ -196,13 +194,23 @@ export class PhysicsWorld {
     if (rot) checkQuat(rot, what, 'rotation');
     const { layer, mask } = this.resolveLayerMask(opts, motion, what);
     validateBodyOptions(opts, what);
+    validateShapeSpec(spec, what);
     this.ensureRoom(estimateShapeBytes(spec) + 2048, what);
-    const shape = buildShape(this.jolt, spec, what);
+    const ccd = opts.motionQuality === 'linearCast' && motion !== 'static';
+    if (ccd) this.stepBudget.reserve('ccdBody', what);
+    let handle: BodyHandle | undefined;
     try {
-      return this.createBody(shape, spec, pos, rot ?? IDENTITY_QUAT, motion, layer, mask, opts, what, at);
+      const shape = buildValidatedShape(this.jolt, spec, what);
+      try {
+        handle = this.createBody(shape, spec, pos, rot ?? IDENTITY_QUAT, motion, layer, mask, opts, what, at);
+      } finally {
+        shape.Release(); // the body holds its own reference now (or creation failed and this frees the shape)
+      }
     } finally {
-      shape.Release(); // the body holds its own reference now (or the build failed and this frees the shape)
+      if (ccd && !handle) this.stepBudget.release('ccdBody');
     }
+    if (ccd) this.ccdIds.add(handle.id);
+    return handle;
   }
 
   private resolveLayerMask(opts: BodyOptions, motion: MotionKind, what: string): { layer: number; mask: number } {
@@ -216,16 +224,11 @@ export class PhysicsWorld {
 
   /** Throws a clear Error when the world is full or the heap cannot take `bytes` more. */
   ensureRoom(bytes: number, what: string): void {
+    this.live();
     if (this.records.size >= this.maxBodies) {
       throw new Error(`${what}: the world is full (${this.maxBodies} bodies, the maxBodies limit of PhysicsWorld.create)`);
     }
-    const free = this.freeHeapBytes();
-    if (free - bytes < this.minFreeHeapBytes) {
-      throw new Error(
-        `${what}: the WASM heap is nearly full (${(free / 1048576).toFixed(1)} MiB free, ~${(bytes / 1048576).toFixed(1)} MiB ` +
-          `needed, ${(this.minFreeHeapBytes / 1048576).toFixed(1)} MiB kept in reserve for stepping)`,
-      );
-    }
+    ensureHeapRoom(this.freeHeapBytes(), bytes, this.minFreeHeapBytes, what);
   }
 
   /** Free bytes in Jolt's fixed 128 MiB heap. */
@@ -237,12 +240,15 @@ export class PhysicsWorld {
     const J = this.jolt;
     const rPos = new J.RVec3(pos.x, pos.y, pos.z); // copied into the settings, freed below
     const qRot = new J.Quat(rot.x, rot.y, rot.z, rot.w); // copied into the settings, freed below
-    const motionType = motion === 'static' ? J.EMotionType_Static : motion === 'kinematic' ? J.EMotionType_Kinematic : J.EMotionType_Dynamic;
+    const isSensor = opts.isSensor === true || opts.sensor !== undefined;
+    // A static Jolt sensor loses every body that falls asleep inside it (a spurious exit). Jolt keeps an active
+    // kinematic sensor awake and lets it see sleeping bodies, so a 'static' sensor is a kinematic one that never moves.
+    const joltMotion = isSensor && motion === 'static' ? 'kinematic' : motion;
+    const motionType = joltMotion === 'static' ? J.EMotionType_Static : joltMotion === 'kinematic' ? J.EMotionType_Kinematic : J.EMotionType_Dynamic;
     const objectLayer = packObjectLayer(J, layer, mask);
     const settings = new J.BodyCreationSettings(shape, rPos, qRot, motionType, objectLayer); // freed below
     J.destroy(rPos);
     J.destroy(qRot);
-    const isSensor = opts.isSensor === true || opts.sensor !== undefined;
     applyBodyOptions(J, settings, opts, motion, isSensor);
     if (opts.noCollideGroup !== undefined) this.slots.applyNoCollideGroup(settings, opts.noCollideGroup);
     let body: JoltBody;
@@ -253,7 +259,7 @@ export class PhysicsWorld {
     } finally {
       J.destroy(settings);
     }
-    this.bodyInterface.AddBody(body.GetID(), motion === 'static' ? J.EActivation_DontActivate : J.EActivation_Activate);
+    this.bodyInterface.AddBody(body.GetID(), joltMotion === 'static' ? J.EActivation_DontActivate : J.EActivation_Activate);
     const handle = this.track(body, { motion, layer, mask, isSensor, role: 'body', shape: spec, opts }, at?.id);
     if (isSensor) this.sensors.ensureInstalled();
     return handle;
@@ -295,6 +301,7 @@ export class PhysicsWorld {
     this.byJoltId.delete(handle.joltId);
     this.stateReader.invalidate();
     this.sensorJoltIds.delete(handle.joltId);
+    if (this.ccdIds.delete(handle.id)) this.stepBudget.release('ccdBody');
     const i = lowerBound(this.sortedIds, handle.id);
     if (this.sortedIds[i] === handle.id) this.sortedIds.splice(i, 1);
     handle.removed = true;
@@ -308,9 +315,7 @@ export class PhysicsWorld {
       throw new Error(`removeBody: no body ${typeof handleOrId === 'number' ? handleOrId : handleOrId.id} in this world`);
     }
     if (handle.role === 'character') throw new Error(`removeBody: body ${handle.id} belongs to a CharacterController; destroy the controller`);
-    for (const c of [...this.constraints]) {
-      if (c.bodyA === handle.id || c.bodyB === handle.id) this.removeTrackedConstraint(c);
-    }
+    this.releaseConstraints(this.constraints.removeFor(handle.id));
     const id = handle.raw.GetID();
     this.bodyInterface.RemoveBody(id);
     this.bodyInterface.DestroyBody(id);
@@ -320,7 +325,7 @@ export class PhysicsWorld {
   /** Removes every body and constraint (characters must be destroyed by their owners first). */
   clear(): void {
     this.live();
-    for (const c of [...this.constraints]) this.removeTrackedConstraint(c);
+    this.releaseConstraints(this.constraints.clear());
     for (const id of [...this.sortedIds].reverse()) {
       const h = this.records.get(id)!;
       if (h.role !== 'character') this.removeBody(h);
@@ -388,74 +393,35 @@ export class PhysicsWorld {
   // ── motion control ────────────────────────────────────────────────────────────────────────────────────────
 
   private handleOf(b: BodyHandle | number, what: string): BodyHandle {
+    this.live();
     const h = typeof b === 'number' ? this.records.get(b) : b;
-    if (!h || h.removed) throw new Error(`${what}: no body ${typeof b === 'number' ? b : b.id} in this world`);
+    if (!h || h.removed || this.records.get(h.id) !== h) throw new Error(`${what}: no body ${typeof b === 'number' ? b : b.id} in this world`);
     return h;
   }
 
-  /** Sets a body's linear velocity (m/s) and wakes it. */
+  /** Sets a body's linear velocity (m/s) and wakes it (not for static bodies). */
   setLinearVelocity(b: BodyHandle | number, v: Vec3Like): void {
-    const h = this.handleOf(b, 'setLinearVelocity');
-    checkVec3(v, 'setLinearVelocity', 'velocity');
-    const jv = new this.jolt.Vec3(v.x, v.y, v.z); // copied, freed at once
-    this.bodyInterface.SetLinearVelocity(h.raw.GetID(), jv);
-    this.jolt.destroy(jv);
+    motion.setLinearVelocity(this, this.handleOf(b, 'setLinearVelocity'), v);
   }
 
-  /** Sets a body's angular velocity (rad/s) and wakes it. */
+  /** Sets a body's angular velocity (rad/s) and wakes it (not for static bodies). */
   setAngularVelocity(b: BodyHandle | number, v: Vec3Like): void {
-    const h = this.handleOf(b, 'setAngularVelocity');
-    checkVec3(v, 'setAngularVelocity', 'velocity');
-    const jv = new this.jolt.Vec3(v.x, v.y, v.z); // copied, freed at once
-    this.bodyInterface.SetAngularVelocity(h.raw.GetID(), jv);
-    this.jolt.destroy(jv);
+    motion.setAngularVelocity(this, this.handleOf(b, 'setAngularVelocity'), v);
   }
 
-  /** Applies an impulse (N·s) at the centre of mass, or at a world point, and wakes the body. */
+  /** Applies an impulse (N·s) to a dynamic body at its centre of mass, or at a world point, and wakes it. */
   addImpulse(b: BodyHandle | number, impulse: Vec3Like, worldPoint?: Vec3Like): void {
-    const h = this.handleOf(b, 'addImpulse');
-    checkVec3(impulse, 'addImpulse', 'impulse');
-    const J = this.jolt;
-    const ji = new J.Vec3(impulse.x, impulse.y, impulse.z); // copied, freed below
-    if (worldPoint) {
-      checkVec3(worldPoint, 'addImpulse', 'worldPoint');
-      const p = new J.RVec3(worldPoint.x, worldPoint.y, worldPoint.z); // copied, freed below
-      this.bodyInterface.AddImpulse(h.raw.GetID(), ji, p);
-      J.destroy(p);
-    } else {
-      this.bodyInterface.AddImpulse(h.raw.GetID(), ji);
-    }
-    J.destroy(ji);
+    motion.addImpulse(this, this.handleOf(b, 'addImpulse'), impulse, worldPoint);
   }
 
   /** Moves a kinematic body so it reaches pos/rot after dtSeconds (velocity-based: pushes dynamics). */
   moveKinematic(b: BodyHandle | number, pos: Vec3Like, rot: QuatLike | null, dtSeconds: number = FIXED_DT_SECONDS): void {
-    const h = this.handleOf(b, 'moveKinematic');
-    if (h.motion !== 'kinematic') throw new Error(`moveKinematic: body ${h.id} is ${h.motion}, not kinematic`);
-    checkVec3(pos, 'moveKinematic', 'position');
-    const r = rot ?? h.rotation();
-    checkQuat(r, 'moveKinematic', 'rotation');
-    if (!Number.isFinite(dtSeconds) || dtSeconds <= 0) throw new Error(`moveKinematic: dtSeconds must be > 0, got ${dtSeconds}`);
-    const J = this.jolt;
-    const p = new J.RVec3(pos.x, pos.y, pos.z); // copied, freed below
-    const q = new J.Quat(r.x, r.y, r.z, r.w); // copied, freed below
-    this.bodyInterface.MoveKinematic(h.raw.GetID(), p, q, dtSeconds);
-    J.destroy(p);
-    J.destroy(q);
+    motion.moveKinematic(this, this.handleOf(b, 'moveKinematic'), pos, rot, dtSeconds);
   }
 
   /** Teleports a body (no velocity change); activates it unless static. */
   setPosition(b: BodyHandle | number, pos: Vec3Like, rot: QuatLike | null = null): void {
-    const h = this.handleOf(b, 'setPosition');
-    checkVec3(pos, 'setPosition', 'position');
-    const r = rot ?? h.rotation();
-    checkQuat(r, 'setPosition', 'rotation');
-    const J = this.jolt;
-    const p = new J.RVec3(pos.x, pos.y, pos.z); // copied, freed below
-    const q = new J.Quat(r.x, r.y, r.z, r.w); // copied, freed below
-    this.bodyInterface.SetPositionAndRotation(h.raw.GetID(), p, q, h.motion === 'static' ? J.EActivation_DontActivate : J.EActivation_Activate);
-    J.destroy(p);
-    J.destroy(q);
+    motion.setPosition(this, this.handleOf(b, 'setPosition'), pos, rot);
   }
 
   // ── queries ───────────────────────────────────────────────────────────────────────────────────────────────
@@ -508,37 +474,37 @@ export class PhysicsWorld {
 
   // ── constraints ───────────────────────────────────────────────────────────────────────────────────────────
 
-  /** Creates a constraint from any TwoBodyConstraintSettings, consuming (destroying) the settings. */
+  /**
+   * Creates a constraint from any TwoBodyConstraintSettings between two different bodies of this world, at least one
+   * of them dynamic. Always consumes (destroys) the settings, also when it throws.
+   */
   addConstraint(settings: InstanceType<J['TwoBodyConstraintSettings']>, a: BodyHandle, b: BodyHandle): InstanceType<J['Constraint']> {
-    this.live();
-    const J = this.jolt;
-    if (a.removed || b.removed || this.records.get(a.id) !== a || this.records.get(b.id) !== b) {
-      J.destroy(settings);
-      throw new Error('addConstraint: both bodies must be live bodies of this world');
-    }
-    const constraint = settings.Create(a.raw, b.raw);
-    J.destroy(settings);
-    constraint.AddRef(); // our reference, so the handle outlives RemoveConstraint until we Release it
-    this.system.AddConstraint(constraint);
-    this.constraints.add({ raw: constraint, bodyA: a.id, bodyB: b.id });
-    return constraint;
-  }
-
-  /** Removes a constraint created by addConstraint. */
-  removeConstraint(constraint: InstanceType<J['Constraint']>): void {
-    for (const c of this.constraints) {
-      if (J_ptr(this.jolt, c.raw) === J_ptr(this.jolt, constraint)) {
-        this.removeTrackedConstraint(c);
-        return;
+    try {
+      this.live();
+      const own = (h: BodyHandle): boolean => !!h && !h.removed && this.records.get(h.id) === h;
+      if (!own(a) || !own(b)) throw new Error('addConstraint: both bodies must be live bodies of this world');
+      if (a === b) throw new Error(`addConstraint: a constraint joins two different bodies, got body ${a.id} twice`);
+      if (a.motion !== 'dynamic' && b.motion !== 'dynamic') {
+        throw new Error(`addConstraint: bodies ${a.id} (${a.motion}) and ${b.id} (${b.motion}) cannot move; at least one must be dynamic`);
       }
+      ensureHeapRoom(this.freeHeapBytes(), CONSTRAINT_HEAP_BYTES, this.minFreeHeapBytes, 'addConstraint');
+      this.stepBudget.reserve('constraint', 'addConstraint');
+    } catch (err) {
+      this.jolt.destroy(settings);
+      throw err;
     }
-    throw new Error('removeConstraint: not a constraint of this world');
+    return this.constraints.add(settings, a, b);
   }
 
-  private removeTrackedConstraint(c: TrackedConstraint): void {
-    this.system.RemoveConstraint(c.raw);
-    c.raw.Release();
-    this.constraints.delete(c);
+  /** Removes a constraint created by addConstraint (or a link helper). */
+  removeConstraint(constraint: InstanceType<J['Constraint']>): void {
+    this.live();
+    if (!this.constraints.remove(constraint)) throw new Error('removeConstraint: not a constraint of this world');
+    this.releaseConstraints(1);
+  }
+
+  private releaseConstraints(count: number): void {
+    for (let i = 0; i < count; i++) this.stepBudget.release('constraint');
   }
 
   /** Pins worldPivot on a to the same point on b (ball-and-socket). */
@@ -550,10 +516,6 @@ export class PhysicsWorld {
   get constraintCount(): number {
     return this.constraints.size;
   }
-}
-
-function J_ptr(J: J, obj: unknown): number {
-  return J.getPointer(obj);
 }
 
 function lowerBound(arr: number[], value: number): number {

@@ -13,6 +13,7 @@ export interface SensorEvent {
 export interface SensorRegistry {
   stableIdOf(joltId: number): number | undefined;
   isSensorJoltId(joltId: number): boolean;
+  isStaticJoltId(joltId: number): boolean;
 }
 
 type ListenerJS = InstanceType<JoltModule['ContactListenerJS']>;
@@ -56,10 +57,13 @@ export class SensorHub {
     this.listener = listener;
   }
 
+  /** [sensor, other] for a pair a sensor reports; null for pairs it ignores (no sensor, two sensors, a static other). */
   private orient(a: number, b: number): [number, number] | null {
-    if (this.registry.isSensorJoltId(a)) return [a, b];
-    if (this.registry.isSensorJoltId(b)) return [b, a];
-    return null;
+    const sa = this.registry.isSensorJoltId(a);
+    const sb = this.registry.isSensorJoltId(b);
+    if (sa === sb) return null;
+    const pair: [number, number] = sa ? [a, b] : [b, a];
+    return this.registry.isStaticJoltId(pair[1]) ? null : pair;
   }
 
   private added(a: number, b: number): void {
