@@ -96,7 +96,8 @@ async function start(): Promise<void> {
     characters: [],
     sensors: [],
     events: [],
-    net: { rttMs: 0, snapshotsPerSecond: 0, kbpsIn: 0, interpolationDelayMs: 0, bufferDepth: 0 },
+    net: { rttMs: 0, snapshotsPerSecond: 0, kbpsIn: 0, interpolationDelayMs: 0, bufferDepth: 0, inputLeadTicks: 0 },
+    camera: null,
   }));
 
   try {

@@ -22,13 +22,15 @@ export interface LoopState {
   characters: HookCharacter[];
   /** True while the follow camera tracks our character. */
   following: boolean;
+  /** The last frame's camera and canvas size. */
+  camera: (CameraView & { widthPx: number; heightPx: number }) | null;
 }
 
 /** Runs frames until stop(). */
 export class GameLoop {
   readonly timer = new FrameTimer();
   readonly history: NetHistory;
-  readonly state: LoopState = { framesRendered: 0, firstFrameMs: null, renderTick: 0, bufferDepth: 0, delayMs: 0, bodies: [], characters: [], following: false };
+  readonly state: LoopState = { framesRendered: 0, firstFrameMs: null, renderTick: 0, bufferDepth: 0, delayMs: 0, bodies: [], characters: [], following: false, camera: null };
   /** Force the orbit camera even when we have a character (V toggles it). */
   orbitOnly = false;
 
@@ -133,6 +135,7 @@ export class GameLoop {
     }
     this.input.captureOnClick = s.following;
     const stats = this.renderer.render(camera);
+    s.camera = { ...camera, widthPx: stats.widthPx, heightPx: stats.heightPx };
     s.framesRendered++;
     if (s.firstFrameMs === null && f.view) s.firstFrameMs = performance.now();
     const timing = this.timer.summary();
@@ -141,6 +144,7 @@ export class GameLoop {
       playerId: mine ? this.welcome.playerId : null,
       serverTick: this.session.serverTick,
       rttMs: this.session.rttMs,
+      inputLeadTicks: this.session.inputLeadTicks,
       snapshotsPerSecond: this.history.snapshotsPerSecond(nowMs),
       kbpsIn: this.history.kbpsIn(nowMs),
       interpolationDelayMs: f.delayMs,

@@ -6,6 +6,8 @@ import { Button, quantizeInput, type InputCommand } from '../../shared/sim/input
 const MOUSE_RADIANS_PER_PX = 0.0025;
 const MAX_PITCH_RADIANS = 1.45;
 const TWO_PI = Math.PI * 2;
+/** How long a short press of a button keeps counting (ms): three ticks. */
+const LATCH_MS = 50;
 
 const MOVE_KEYS: Readonly<Record<string, [number, number]>> = {
   KeyW: [0, 1],
@@ -39,7 +41,8 @@ export class InputController {
   private readonly element: HTMLElement;
   private readonly keys = new Set<string>();
   private held = 0;
-  private latched = 0;
+  /** Button bit → time (ms) until which a press counts even if already released. */
+  private readonly latchedUntil = new Map<number, number>();
   /** The browser refused pointer lock: clicks fire without it and a right-drag looks. */
   private lockRefused = false;
   private readonly listeners: Array<[EventTarget, string, EventListener]> = [];
@@ -103,10 +106,17 @@ export class InputController {
     return { x: Math.max(-1, Math.min(1, x)), z: Math.max(-1, Math.min(1, z)) };
   }
 
-  /** The command for the next tick; presses shorter than a tick still count once. */
-  sample(): InputCommand {
-    const buttons = this.enabled ? this.held | this.latched : 0;
-    this.latched = 0;
+  /**
+   * The command for the coming ticks. A press shorter than a tick still counts: it stays set for LATCH_MS after it
+   * happened, so the library's next send (which may come after a later sample) carries it.
+   */
+  sample(nowMs: number = performance.now()): InputCommand {
+    let latched = 0;
+    for (const [bit, until] of this.latchedUntil) {
+      if (until > nowMs) latched |= bit;
+      else this.latchedUntil.delete(bit);
+    }
+    const buttons = this.enabled ? this.held | latched : 0;
     const move = this.enabled ? this.moveAxes() : { x: 0, z: 0 };
     return quantizeInput(move.x, move.z, this.yawRadians, this.pitchRadians, buttons);
   }
@@ -131,7 +141,7 @@ export class InputController {
     if (bit) {
       if (down) {
         this.held |= bit;
-        this.latched |= bit;
+        this.latch(bit);
       } else {
         // Sprint stays held while either shift key is down.
         if (bit !== Button.Sprint || !this.keys.has(e.code === 'ShiftLeft' ? 'ShiftRight' : 'ShiftLeft')) this.held &= ~bit;
@@ -157,11 +167,16 @@ export class InputController {
       return;
     }
     this.held |= Button.Fire;
-    this.latched |= Button.Fire;
+    this.latch(Button.Fire);
+  }
+
+  private latch(bit: number): void {
+    this.latchedUntil.set(bit, performance.now() + LATCH_MS);
   }
 
   private releaseAll(): void {
     this.keys.clear();
     this.held = 0;
+    this.latchedUntil.clear();
   }
 }

@@ -58,7 +58,9 @@ function hookState(): TaosState {
       kbpsIn: loop ? loop.history.kbpsIn(now) : 0,
       interpolationDelayMs: s?.delayMs ?? 0,
       bufferDepth: s?.bufferDepth ?? 0,
+      inputLeadTicks: page.session?.inputLeadTicks ?? 0,
     },
+    camera: s?.camera ? { ...s.camera, eye: [...s.camera.eye], target: [...s.camera.target] } : null,
   };
 }
 
@@ -86,8 +88,9 @@ async function boot(): Promise<void> {
   });
 
   const params = new URLSearchParams(location.search);
-  let room = params.get('room');
-  if (room === null) {
+  // ?room=ID joins that room directly; a bare ?room= joins the default room directly.
+  let room = params.has('room') ? params.get('room') || null : null;
+  if (!params.has('room')) {
     let lobby;
     try {
       lobby = await fetchLobby(location.origin);
@@ -122,8 +125,10 @@ function join(room: string | null, name: string): void {
       page.loop?.stop();
       const loop = new GameLoop({ renderer, world, session: page.session!, input, hud, welcome, onFatal: (err) => fail('Rendering failed', err.message, reload) });
       page.loop = loop;
-      hud.visible = true;
-      byId('help').hidden = false;
+      // ?hud=0 starts with the HUD and help hidden (clean screenshots); H toggles them.
+      const showHud = new URLSearchParams(location.search).get('hud') !== '0';
+      hud.visible = showHud;
+      byId('help').hidden = !showHud;
       byId('crosshair').hidden = false;
       hud.log(`joined ${welcome.roomId} (${welcome.scenario.name}) as #${welcome.playerId}`);
       input.attach();
@@ -143,6 +148,10 @@ function join(room: string | null, name: string): void {
       page.phase = 'connecting';
       showMessage('Connection lost', `${reason}\nReconnecting (attempt ${attempt})…`, 'info');
     },
+    onNotice(line) {
+      console.warn(line);
+      hud.log(line);
+    },
     onClosed(reason, detail) {
       page.connected = false;
       page.loop?.stop();
@@ -159,6 +168,7 @@ function closedTitle(reason: string): string {
   if (reason === 'room-not-found') return 'No such room';
   if (reason === 'room-full' || reason === 'server-full') return 'The room is full';
   if (reason === 'server-shutdown') return 'The server shut down';
+  if (reason === 'bad-request') return 'Cannot join';
   return 'Disconnected';
 }
 

@@ -38,6 +38,8 @@ export interface SessionHandlers {
   onReconnecting(attempt: number, reason: string): void;
   /** The session is over for good (server bye, refused, unreachable, or our own close). */
   onClosed(reason: string, detail: string): void;
+  /** Something worth telling the user that does not end the session (a refused message, a bad snapshot). */
+  onNotice(line: string): void;
 }
 
 /** A live connection to one room. */
@@ -46,6 +48,8 @@ export interface NetSession {
   readonly serverTick: number;
   /** Round-trip time (ms), null before the first pong. */
   readonly rttMs: number | null;
+  /** How many ticks ahead of the server our inputs are stamped (null before the welcome). */
+  readonly inputLeadTicks: number | null;
   /** The interpolated world at `nowMs` (performance.now() clock). */
   frame(nowMs: number): SessionFrame;
   /** The command to send for the coming ticks (the library sends at 60 Hz). */

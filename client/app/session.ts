@@ -1,13 +1,68 @@
-// Interim: the page's network session will be an adapter over the client library (client/net), which is still being
-// written; until it lands, joining reports that clearly instead of pretending to connect.
-import type { NetSession, SessionHandlers } from './session-types.ts';
+// The page's network session: a thin adapter over the client library (client/net's NetClient) that maps its
+// events and interpolated frames onto what the page uses (session-types.ts). No wire work happens here.
+import { connect, type NetClient } from '../net/index.ts';
+import type { InputCommand } from '../../shared/sim/input.ts';
+import type { NetSession, SessionFrame, SessionHandlers } from './session-types.ts';
 
-/** Opens a session to the room (interim: always reports that networking is not built yet). */
-export function openSession(_url: string, _opts: { name: string; room: string | null }, handlers: SessionHandlers): NetSession {
-  queueMicrotask(() => handlers.onClosed('unavailable', 'This build has no network client yet (client/net is not in the tree).'));
+/** Connects to `wsUrl` and reports through `handlers`; the returned session lives until close() or onClosed. */
+export function openSession(wsUrl: string, opts: { name: string; room: string | null }, handlers: SessionHandlers): NetSession {
+  let client: NetClient;
+  try {
+    client = connect(wsUrl, { name: opts.name, room: opts.room });
+  } catch (err) {
+    // Bad name or room id: report it like any other refusal.
+    const message = (err as Error).message;
+    queueMicrotask(() => handlers.onClosed('bad-request', message));
+    return closedSession();
+  }
+  client.on('welcome', (w) =>
+    handlers.onWelcome({
+      playerId: w.playerId,
+      roomId: w.roomId,
+      tick: w.tick,
+      tickRateHz: w.tickRateHz,
+      snapshotRateHz: w.snapshotRateHz,
+      scenario: w.scenario,
+      staticBodies: w.staticBodies,
+      dynamicBodies: w.dynamicBodies,
+    }),
+  );
+  client.on('snapshot', (s) => handlers.onSnapshot(s.tick, s.sizeBytes, s.descriptors));
+  client.on('events', (events) => handlers.onEvents(events));
+  client.on('reconnecting', (r) => handlers.onReconnecting(r.attempt, r.reason));
+  client.on('closed', (c) => handlers.onClosed(c.reason, c.detail));
+  client.on('serverError', (e) => handlers.onNotice(`server refused: ${e.code}: ${e.message}`));
+  client.on('protocolError', (m) => handlers.onNotice(`protocol problem: ${m}`));
+
+  return {
+    get serverTick() {
+      const t = client.serverTick();
+      return t === null ? 0 : Math.floor(t);
+    },
+    get rttMs() {
+      return client.stats().rttMs;
+    },
+    get inputLeadTicks() {
+      return client.stats().leadTicks;
+    },
+    frame(nowMs: number): SessionFrame {
+      const f = client.sample(nowMs);
+      return { view: f.view, renderTick: f.renderTick, bufferDepth: f.bufferDepth, delayMs: f.delayMs };
+    },
+    setInput(cmd: InputCommand) {
+      if (client.state !== 'closed') client.setInput(cmd);
+    },
+    close() {
+      client.close();
+    },
+  };
+}
+
+function closedSession(): NetSession {
   return {
     serverTick: 0,
     rttMs: null,
+    inputLeadTicks: null,
     frame: () => ({ view: null, renderTick: 0, bufferDepth: 0, delayMs: 0 }),
     setInput: () => undefined,
     close: () => undefined,

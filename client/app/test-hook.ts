@@ -39,11 +39,13 @@ export interface TaosState {
   error: string | null;
   bodies: HookBody[];
   characters: HookCharacter[];
-  /** Sensor bodies and whether something is inside each. */
-  sensors: Array<{ sensorId: number; occupied: boolean }>;
+  /** Sensor bodies, whether something is inside each, and whether it is drawn lit. */
+  sensors: Array<{ sensorId: number; occupied: boolean; lit: boolean }>;
   /** Recent event lines as shown in the feed. */
   events: string[];
-  net: { rttMs: number; snapshotsPerSecond: number; kbpsIn: number; interpolationDelayMs: number; bufferDepth: number };
+  net: { rttMs: number; snapshotsPerSecond: number; kbpsIn: number; interpolationDelayMs: number; bufferDepth: number; inputLeadTicks: number };
+  /** The camera of the last frame (null before one), with the canvas size it was drawn at (device pixels). */
+  camera: { eye: number[]; target: number[]; fovYRadians: number; nearMetres: number; farMetres: number; widthPx: number; heightPx: number } | null;
 }
 
 function deepFreeze<T>(value: T): T {

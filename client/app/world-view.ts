@@ -8,6 +8,8 @@ import { InstanceFlag } from '../render/shaders.ts';
 
 /** Brightness added to a hidden sensor volume while something is inside it. */
 const OCCUPIED_EMISSIVE = 1.6;
+/** An empty sensor volume is drawn at this fraction of its colour (dim), an occupied one at full colour and lit. */
+const IDLE_SENSOR_SHADE = 0.4;
 
 interface Known {
   descriptor: BodyDescriptor;
@@ -99,9 +101,11 @@ export class WorldView {
     this.visible = seen;
   }
 
-  /** Sensors (hidden static volumes and any body named by a sensor event) and whether something is inside. */
-  sensors(): Array<{ sensorId: number; occupied: boolean }> {
-    return [...this.occupants.entries()].sort((a, b) => a[0] - b[0]).map(([sensorId, set]) => ({ sensorId, occupied: set.size > 0 }));
+  /** Sensors (hidden static volumes and any body named by a sensor event): something inside? drawn lit? */
+  sensors(): Array<{ sensorId: number; occupied: boolean; lit: boolean }> {
+    return [...this.occupants.entries()]
+      .sort((a, b) => a[0] - b[0])
+      .map(([sensorId, set]) => ({ sensorId, occupied: set.size > 0, lit: (this.renderer.store.style(sensorId)?.emissive ?? 0) > 0 }));
   }
 
   /** Bodies drawn this frame (static + visible moving ones). */
@@ -117,7 +121,7 @@ export class WorldView {
   private register(d: BodyDescriptor): boolean {
     const hidden = d.hidden;
     const style: Partial<BodyStyle> = {
-      color: d.color,
+      color: hidden ? shade(d.color, IDLE_SENSOR_SHADE) : d.color,
       // Hidden bodies are trigger volumes: draw a box's edges, or any other shape hatched, so players see the zone.
       flags: hidden ? (d.shape.kind === 'box' ? InstanceFlag.Outline : InstanceFlag.Hatch) : d.motion === 'static' ? InstanceFlag.Grid : 0,
       // Moving bodies stay hidden until a snapshot places them.
@@ -154,7 +158,8 @@ export class WorldView {
         else set.delete(e.bodyId);
         const occupied = set.size > 0;
         if (occupied !== wasOccupied) {
-          this.renderer.store.setStyle(e.sensorId, { emissive: occupied ? OCCUPIED_EMISSIVE : 0 });
+          const color = this.known.get(e.sensorId)?.descriptor.color;
+          if (color) this.renderer.store.setStyle(e.sensorId, occupied ? { emissive: OCCUPIED_EMISSIVE, color } : { emissive: 0, color: shade(color, IDLE_SENSOR_SHADE) });
           if (e.playerId !== undefined) this.log(`player #${e.playerId} ${e.type === 'sensorEnter' ? 'entered' : 'left'} zone ${e.sensorId}`);
         }
         return;
@@ -176,6 +181,10 @@ export class WorldView {
         return;
     }
   }
+}
+
+function shade(c: readonly [number, number, number], k: number): [number, number, number] {
+  return [c[0] * k, c[1] * k, c[2] * k];
 }
 
 function sameLook(a: BodyDescriptor, b: BodyDescriptor): boolean {

@@ -8,6 +8,10 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { chromium, type BrowserContext, type Page } from 'playwright-core';
 import { describe, it } from 'vitest';
+import { mat4LookAt, mat4Multiply, mat4Perspective, mat4TransformPoint, type Vec3 } from '../../client/render/mat4.ts';
+import { silentLogger } from '../../server/logger.ts';
+import { createMetrics } from '../../server/metrics.ts';
+import { startServer, type RunningServer } from '../../server/start-server.ts';
 import { createStaticHandler } from '../../server/static-files.ts';
 
 /** Where the browser is looked for (override with CHROMIUM_PATH). */
@@ -192,4 +196,96 @@ export function dominantColor(px: CanvasPixels): [number, number, number] {
 /** Reads the page's read-only test hook. */
 export async function readHook<T = Record<string, unknown>>(page: Page): Promise<T> {
   return page.evaluate(() => JSON.parse(JSON.stringify((globalThis as { __taos?: unknown }).__taos ?? null)) as never);
+}
+
+/** A camera as the page's hook reports it. */
+export interface HookCamera {
+  eye: number[];
+  target: number[];
+  fovYRadians: number;
+  nearMetres: number;
+  farMetres: number;
+  widthPx: number;
+  heightPx: number;
+}
+
+/** Where a world point lands on the canvas, as fractions of its width and height (0,0 = top left); null if behind. */
+export function projectToCanvas(camera: HookCamera, point: readonly [number, number, number]): { x: number; y: number } | null {
+  const proj = mat4Perspective(camera.fovYRadians, camera.widthPx / camera.heightPx, camera.nearMetres, camera.farMetres);
+  const view = mat4LookAt(camera.eye as Vec3, camera.target as Vec3, [0, 1, 0]);
+  const v = mat4TransformPoint(view, [point[0], point[1], point[2]]);
+  if (v[2] >= -camera.nearMetres) return null;
+  const c = mat4TransformPoint(mat4Multiply(proj, view), [point[0], point[1], point[2]]);
+  return { x: (c[0] + 1) / 2, y: (1 - c[1]) / 2 };
+}
+
+/** Fraction of pixels that changed between two captures inside a square around (fx, fy) (fractions of the size). */
+export function regionChanged(a: CanvasPixels, b: CanvasPixels, fx: number, fy: number, halfSizePx: number, tolerance = 12): number {
+  const cx = Math.round(fx * a.width);
+  const cy = Math.round(fy * a.height);
+  let changed = 0;
+  let total = 0;
+  for (let y = Math.max(0, cy - halfSizePx); y <= Math.min(a.height - 1, cy + halfSizePx); y++) {
+    for (let x = Math.max(0, cx - halfSizePx); x <= Math.min(a.width - 1, cx + halfSizePx); x++) {
+      const i = (y * a.width + x) * 4;
+      total++;
+      if (Math.abs(a.rgba[i] - b.rgba[i]) > tolerance || Math.abs(a.rgba[i + 1] - b.rgba[i + 1]) > tolerance || Math.abs(a.rgba[i + 2] - b.rgba[i + 2]) > tolerance) changed++;
+    }
+  }
+  return total === 0 ? 0 : changed / total;
+}
+
+/**
+ * Starts the real server in-process on a loopback port 0, serving `clientDir`, quiet. The input flood limit keeps its
+ * rate but gets a deeper burst: the server shares this process with the test and two software-rendering browsers,
+ * and when it stalls for a couple of seconds a client's on-time inputs arrive all at once.
+ */
+export async function startAppServer(opts: { scenario: string; clientDir: string; params?: Record<string, number> }): Promise<RunningServer> {
+  return startServer({
+    port: 0,
+    host: '127.0.0.1',
+    scenario: opts.scenario,
+    params: opts.params,
+    clientDir: opts.clientDir,
+    logger: silentLogger(),
+    metrics: createMetrics({ processMetrics: false }),
+    limits: { inputs: { perSecond: 150, burst: 1200 }, messages: { perSecond: 300, burst: 2400 } },
+  });
+}
+
+/** Creates a room through the HTTP API (POST /api/rooms); throws with the server's answer on refusal. */
+export async function createRoom(baseUrl: string, body: { scenario: string; roomId: string; params?: Record<string, number> }): Promise<void> {
+  const res = await fetch(new URL('/api/rooms', baseUrl), { method: 'POST', headers: { 'content-type': 'application/json' }, body: JSON.stringify(body), signal: AbortSignal.timeout(10_000) });
+  if (!res.ok) throw new Error(`creating room ${body.roomId}: ${res.status} ${await res.text()}`);
+}
+
+/** Waits until the page's hook satisfies `predicate` (evaluated in the page on the hook object). */
+export async function waitForHook(page: Page, predicate: string, timeoutMs = 30_000): Promise<void> {
+  await page.waitForFunction(`(() => { const t = globalThis.__taos; return !!t && (${predicate}); })()`, null, { timeout: timeoutMs, polling: 100 });
+}
+
+/** Euclidean distance of two 3-vectors. */
+export function distance3(a: readonly number[], b: readonly number[]): number {
+  return Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+}
+
+/** Waits until a player's character has stood still in a page's hook for a quarter second; returns its position. */
+export async function waitUntilStill(page: Page, playerId: number, timeoutMs = 15_000): Promise<number[]> {
+  let last: number[] | null = null;
+  const deadline = Date.now() + timeoutMs;
+  while (Date.now() < deadline) {
+    await page.waitForTimeout(250);
+    const hook = await readHook<{ characters: Array<{ playerId: number; position: number[] }> }>(page);
+    const pos = hook.characters.find((c) => c.playerId === playerId)?.position ?? null;
+    if (pos && last && distance3(pos, last) < 0.01) return pos;
+    last = pos;
+  }
+  throw new Error(`player ${playerId} never stood still within ${timeoutMs} ms`);
+}
+
+/** Number of pixels whose colour passes `test` (r, g, b in 0–255). */
+export function countPixels(px: CanvasPixels, test: (r: number, g: number, b: number) => boolean): number {
+  let n = 0;
+  for (let i = 0; i < px.rgba.length; i += 4) if (test(px.rgba[i], px.rgba[i + 1], px.rgba[i + 2])) n++;
+  return n;
 }

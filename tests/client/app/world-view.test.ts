@@ -58,7 +58,7 @@ describe('WorldView', () => {
     expect(w.drawnCount).toBe(3);
     w.apply(view(11, []), 11);
     expect(r.store.style(5)?.visible).toBe(false);
-    expect(w.sensors()).toEqual([{ sensorId: 1, occupied: false }]);
+    expect(w.sensors()).toEqual([{ sensorId: 1, occupied: false, lit: false }]);
   });
 
   it('lights a sensor while something is inside, from the tick of the enter event to the tick of the exit', () => {
@@ -72,13 +72,17 @@ describe('WorldView', () => {
     ]);
     w.apply(null, 19.5);
     expect(r.store.style(1)?.emissive).toBe(0);
+    const dim = r.store.style(1)!.color;
+    expect(dim[0]).toBeLessThan(trigger.color[0]);
     w.apply(null, 20);
     expect(r.store.style(1)?.emissive).toBeGreaterThan(0);
-    expect(w.sensors()).toEqual([{ sensorId: 1, occupied: true }]);
+    expect(r.store.style(1)?.color).toEqual(trigger.color);
+    expect(w.sensors()).toEqual([{ sensorId: 1, occupied: true, lit: true }]);
     w.apply(null, 29.9);
     expect(r.store.style(1)?.emissive).toBeGreaterThan(0);
     w.apply(null, 30);
     expect(r.store.style(1)?.emissive).toBe(0);
+    expect(r.store.style(1)?.color).toEqual(dim);
     expect(lines).toEqual(['player #2 entered zone 1', 'player #2 left zone 1']);
   });
 

@@ -1,0 +1,97 @@
+// Browser test of two players in one room (real server in-process on loopback port 0, two Chromium processes): keys
+// pressed in one page move its character, and the other page's interpolated state and pixels show it moving.
+import { afterAll, beforeAll, expect, it } from 'vitest';
+import type { TaosState } from '../../client/app/test-hook.ts';
+import type { RunningServer } from '../../server/start-server.ts';
+import { buildClient } from '../../scripts/build-client.ts';
+import {
+  canvasPixels,
+  createRoom,
+  describeBrowser,
+  distance3,
+  launchBrowser,
+  projectToCanvas,
+  readHook,
+  regionChanged,
+  startAppServer,
+  waitForHook,
+  waitUntilStill,
+  type BrowserSession,
+  type HookCamera,
+} from '../helpers/browser.ts';
+
+/** Height of a character capsule's middle above its feet (m): where to look for it on screen. */
+const CAPSULE_MID_METRES = 0.9;
+
+describeBrowser('two players', () => {
+  let browser: BrowserSession;
+  let server: RunningServer;
+
+  beforeAll(async () => {
+    const built = await buildClient();
+    server = await startAppServer({ scenario: 'character-course', clientDir: built.outDir });
+    // A quiet room (a single falling body) so that what moves on screen is the other player.
+    await createRoom(server.url, { scenario: 'shape-rain', roomId: 'duo', params: { count: 1 } });
+    browser = await launchBrowser();
+  });
+
+  afterAll(async () => {
+    await browser?.close();
+    await server?.close('test over');
+  });
+
+  it("shows one page's character moving on the other page when its keys are pressed", async () => {
+    // A second browser: a background tab would stop drawing (no animation frames for hidden pages).
+    const other = await launchBrowser();
+    const a = await browser.newPage();
+    const b = await other.newPage();
+    await a.page.goto(new URL('/?room=duo&name=walker&hud=0', server.url).href);
+    await waitForHook(a.page, "t.connected && t.characters.some((c) => c.playerId === t.playerId)");
+    await b.page.goto(new URL('/?room=duo&name=watcher&hud=0', server.url).href);
+    await waitForHook(b.page, 't.connected && t.characters.length >= 2 && t.framesRendered >= 3');
+    const walkerId = (await readHook<TaosState>(a.page)).playerId!;
+    const before = await readHook<TaosState>(b.page);
+    const startOnB = before.characters.find((c) => c.playerId === walkerId)!.position;
+    const startOnA = (await readHook<TaosState>(a.page)).characters.find((c) => c.playerId === walkerId)!.position;
+    const pixelsBefore = await canvasPixels(b.page, 'canvas#scene', 320);
+    const cameraBefore = (await readHook<TaosState>(b.page)).camera as HookCamera;
+
+    // W walks forward (−Z at the initial yaw); shift sprints.
+    await a.page.keyboard.down('ShiftLeft');
+    await a.page.keyboard.down('KeyW');
+    await waitForHook(a.page, `t.error !== null || t.characters.some((c) => c.playerId === ${walkerId} && c.position[2] < ${startOnA[2] - 2.5})`, 20_000);
+    await a.page.keyboard.up('KeyW');
+    await a.page.keyboard.up('ShiftLeft');
+
+    // Let the walker stop on both screens (B draws it ~100–200 ms late) before comparing.
+    await waitUntilStill(a.page, walkerId);
+    await waitUntilStill(b.page, walkerId);
+    const hookA = await readHook<TaosState>(a.page);
+    expect(hookA.error).toBeNull();
+    const onA = hookA.characters.find((c) => c.playerId === walkerId)!.position;
+    expect(startOnA[2] - onA[2]).toBeGreaterThan(2.5);
+    expect(Math.abs(onA[0] - startOnA[0])).toBeLessThan(0.5);
+    const after = await readHook<TaosState>(b.page);
+    const endOnB = after.characters.find((c) => c.playerId === walkerId)!.position;
+    expect(startOnB[2] - endOnB[2]).toBeGreaterThan(2.5);
+    // Both pages agree where the walker stopped.
+    expect(distance3(endOnB, onA)).toBeLessThan(0.05);
+    // The watcher did not move, so its camera did not either: what changed on screen is the walker.
+    const watcherId = after.playerId!;
+    const watcherMoved = distance3(after.characters.find((c) => c.playerId === watcherId)!.position, before.characters.find((c) => c.playerId === watcherId)!.position);
+    expect(watcherMoved).toBeLessThan(0.1);
+    const cameraAfter = after.camera as HookCamera;
+    expect(distance3(cameraAfter.eye, cameraBefore.eye)).toBeLessThan(0.1);
+    const pixelsAfter = await canvasPixels(b.page, 'canvas#scene', 320);
+    // Where the walker stands now (it started behind the walkway's wall, out of sight), its capsule appeared.
+    const to = projectToCanvas(cameraAfter, [endOnB[0], endOnB[1] + CAPSULE_MID_METRES, endOnB[2]]);
+    expect(to).not.toBeNull();
+    expect(regionChanged(pixelsBefore, pixelsAfter, to!.x, to!.y, 1)).toBeGreaterThan(0.5);
+    // A control spot of sky, away from both characters, did not change.
+    expect(regionChanged(pixelsBefore, pixelsAfter, 0.9, 0.1, 2)).toBe(0);
+    expect(a.errors).toEqual([]);
+    expect(b.errors).toEqual([]);
+    await a.page.close();
+    await other.close();
+  });
+});
