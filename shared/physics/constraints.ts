@@ -8,6 +8,12 @@ import type { Vec3Like } from './types.ts';
 
 type Constraint = InstanceType<JoltModule['Constraint']>;
 
+/**
+ * Position iterations the link helpers ask of Jolt (its default is 2): a 5-link chain released 60° from the vertical
+ * then stretches at most 0.9% instead of 1.7%. Change one link with constraint.SetNumPositionStepsOverride(n).
+ */
+export const LINK_POSITION_STEPS = 6;
+
 function normalized(v: Vec3Like, what: string, field: string): Vec3Like {
   checkVec3(v, what, field);
   const len = Math.sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
@@ -31,6 +37,7 @@ export function pointLink(world: PhysicsWorld, a: BodyHandle, b: BodyHandle, wor
   settings.mSpace = J.EConstraintSpace_WorldSpace;
   settings.mPoint1.Set(worldPivot.x, worldPivot.y, worldPivot.z);
   settings.mPoint2.Set(worldPivot.x, worldPivot.y, worldPivot.z);
+  settings.mNumPositionStepsOverride = LINK_POSITION_STEPS;
   return world.addConstraint(settings, a, b);
 }
 
@@ -57,6 +64,7 @@ export function hingeLink(world: PhysicsWorld, a: BodyHandle, b: BodyHandle, wor
     settings.mLimitsMin = minRadians;
     settings.mLimitsMax = maxRadians;
   }
+  settings.mNumPositionStepsOverride = LINK_POSITION_STEPS;
   return world.addConstraint(settings, a, b);
 }
 
@@ -77,6 +85,7 @@ export function distanceLink(world: PhysicsWorld, a: BodyHandle, b: BodyHandle, 
     settings.mMinDistance = range.minDistance;
     settings.mMaxDistance = range.maxDistance;
   }
+  settings.mNumPositionStepsOverride = LINK_POSITION_STEPS;
   return world.addConstraint(settings, a, b);
 }
 
@@ -103,6 +112,7 @@ export function sliderLink(world: PhysicsWorld, a: BodyHandle, b: BodyHandle, wo
     settings.mLimitsMin = limits.minMetres;
     settings.mLimitsMax = limits.maxMetres;
   }
+  settings.mNumPositionStepsOverride = LINK_POSITION_STEPS;
   return world.addConstraint(settings, a, b);
 }
 
