@@ -90,7 +90,7 @@ describe('queries', () => {
 
   it('follows bodies as they move', async () => {
     const w = await makeWorld({ gravity: { x: 0, y: 0, z: 0 } });
-    const box = w.addBox({ x: 0.5, y: 0.5, z: 0.5 }, { x: 0, y: 0, z: 0 }, null, { linearVelocity: { x: 6, y: 0, z: 0 }, linearDamping: 0 });
+    w.addBox({ x: 0.5, y: 0.5, z: 0.5 }, { x: 0, y: 0, z: 0 }, null, { linearVelocity: { x: 6, y: 0, z: 0 }, linearDamping: 0 });
     run(w, 60);
     expect(w.rayDownY(0, 5, 0, 10)).toBeNull();
     expect(w.rayDownY(6, 5, 0, 10)).toBeCloseTo(0.5, 2);
