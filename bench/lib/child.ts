@@ -17,9 +17,10 @@ export interface Child {
   exited: Promise<number | null>;
 }
 
-/** Starts `node script args…` with this process's Node (stdout/stderr collected; stdin ignored unless piped). */
-export function startNode(script: string, args: readonly string[], opts: { stdin?: boolean } = {}): Child {
-  const proc = spawn(process.execPath, [script, ...args], { cwd: REPO_ROOT, stdio: [opts.stdin ? 'pipe' : 'ignore', 'pipe', 'pipe'] });
+/** Starts `node script args…` with this process's Node (stdout/stderr collected; stdin ignored unless piped; extra env). */
+export function startNode(script: string, args: readonly string[], opts: { stdin?: boolean; env?: Record<string, string> } = {}): Child {
+  const env = opts.env ? { ...process.env, ...opts.env } : process.env;
+  const proc = spawn(process.execPath, [script, ...args], { cwd: REPO_ROOT, stdio: [opts.stdin ? 'pipe' : 'ignore', 'pipe', 'pipe'], env });
   let out = '';
   let err = '';
   proc.stdout!.setEncoding('utf8').on('data', (d: string) => (out += d));
