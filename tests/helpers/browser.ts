@@ -129,14 +129,16 @@ export interface CanvasPixels {
   width: number;
   height: number;
   /** RGBA bytes, row-major. */
-  rgba: number[];
+  rgba: Uint8Array;
 }
 
 /** Screenshots the page's canvas after two animation frames and decodes it in the page. */
 export async function canvasPixels(page: Page, selector = 'canvas#scene', maxWidth = 160): Promise<CanvasPixels> {
   await page.evaluate(() => new Promise<void>((resolve) => requestAnimationFrame(() => requestAnimationFrame(() => resolve()))));
-  const png = await page.locator(selector).screenshot({ type: 'png' });
-  return page.evaluate(
+  const box = await page.locator(selector).boundingBox();
+  if (!box) throw new Error(`${selector} is not visible`);
+  const png = await page.screenshot({ type: 'png', clip: box });
+  const decoded = await page.evaluate(
     async ({ b64, maxW }) => {
       const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
       const bitmap = await createImageBitmap(new Blob([bytes], { type: 'image/png' }));
@@ -147,10 +149,15 @@ export async function canvasPixels(page: Page, selector = 'canvas#scene', maxWid
       if (!ctx) throw new Error('no 2d context for decoding');
       ctx.imageSmoothingEnabled = false;
       ctx.drawImage(bitmap, 0, 0, w, h);
-      return { width: w, height: h, rgba: Array.from(ctx.getImageData(0, 0, w, h).data) };
+      // Hand the bytes back as base64: a plain array of numbers is slow to serialize.
+      const data = ctx.getImageData(0, 0, w, h).data;
+      let binary = '';
+      for (let i = 0; i < data.length; i += 0x8000) binary += String.fromCharCode(...data.subarray(i, i + 0x8000));
+      return { width: w, height: h, rgba: btoa(binary) };
     },
     { b64: png.toString('base64'), maxW: maxWidth },
   );
+  return { width: decoded.width, height: decoded.height, rgba: new Uint8Array(Buffer.from(decoded.rgba, 'base64')) };
 }
 
 /** Fraction of pixels that differ from `rgb` by more than `tolerance` on some channel. */
