@@ -130,28 +130,33 @@ export class InputController {
     if (!this.enabled || e.ctrlKey || e.metaKey || e.altKey) return;
     const target = e.target as HTMLElement | null;
     if (target && (target.tagName === 'INPUT' || target.tagName === 'TEXTAREA' || target.isContentEditable)) return;
-    const isMove = e.code in MOVE_KEYS;
-    const bit = BUTTON_KEYS[e.code] ?? 0;
-    if (!isMove && bit === 0) return;
-    e.preventDefault();
-    if (isMove) {
-      if (down) this.keys.add(e.code);
-      else this.keys.delete(e.code);
-    }
+    if (this.press(e.code, down)) e.preventDefault();
+  }
+
+  /** Applies a key (a KeyboardEvent.code) going down or up; returns false for keys that control nothing. */
+  press(code: string, down: boolean, nowMs: number = performance.now()): boolean {
+    const isMove = code in MOVE_KEYS;
+    const bit = BUTTON_KEYS[code] ?? 0;
+    if (!isMove && bit === 0) return false;
+    if (down) this.keys.add(code);
+    else this.keys.delete(code);
     if (bit) {
       if (down) {
         this.held |= bit;
-        this.latch(bit);
-      } else {
-        // Sprint stays held while either shift key is down.
-        if (bit !== Button.Sprint || !this.keys.has(e.code === 'ShiftLeft' ? 'ShiftRight' : 'ShiftLeft')) this.held &= ~bit;
-      }
-      if (bit === Button.Sprint) {
-        if (down) this.keys.add(e.code);
-        else this.keys.delete(e.code);
+        this.latchedUntil.set(bit, nowMs + LATCH_MS);
+      } else if (!this.anyKeyHolds(bit)) {
+        // Released only when no other key for the same button (the other shift key) is still down.
+        this.held &= ~bit;
       }
     }
+    return true;
   }
+
+  private anyKeyHolds(bit: number): boolean {
+    for (const code of this.keys) if (BUTTON_KEYS[code] === bit) return true;
+    return false;
+  }
+
 
   private onMouseDown(e: MouseEvent): void {
     if (!this.enabled || e.button !== 0) return;
@@ -167,11 +172,7 @@ export class InputController {
       return;
     }
     this.held |= Button.Fire;
-    this.latch(Button.Fire);
-  }
-
-  private latch(bit: number): void {
-    this.latchedUntil.set(bit, performance.now() + LATCH_MS);
+    this.latchedUntil.set(Button.Fire, performance.now() + LATCH_MS);
   }
 
   private releaseAll(): void {
