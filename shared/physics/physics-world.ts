@@ -22,6 +22,9 @@ const MAX_STEP_SECONDS = 1 / 30;
 const SUBSTEP_THRESHOLD_SECONDS = 1 / 55;
 /** Heap bytes reserved per constraint (measured ≤ 700 B for a hinge). */
 const CONSTRAINT_HEAP_BYTES = 4096;
+/** Saved state per body and per constraint, with room for contacts (measured 297-943 B per body). */
+const STATE_BYTES_PER_BODY = 1200;
+const STATE_BYTES_PER_CONSTRAINT = 256;
 
 type J = JoltModule;
 
@@ -229,6 +232,20 @@ export class PhysicsWorld {
       throw new Error(`${what}: the world is full (${this.maxBodies} bodies, the maxBodies limit of PhysicsWorld.create)`);
     }
     ensureHeapRoom(this.freeHeapBytes(), bytes, this.minFreeHeapBytes, what);
+  }
+
+  /**
+   * Heap bytes a full state save (SaveState with contacts) may take at its peak: measured up to 943 B per body in a
+   * pile, and the in-memory buffer grows by doubling, so 2.5× that.
+   */
+  stateSaveHeapBytes(): number {
+    return Math.ceil(2.5 * (4096 + STATE_BYTES_PER_BODY * this.records.size + STATE_BYTES_PER_CONSTRAINT * this.constraints.size));
+  }
+
+  /** Throws a clear Error unless the heap can take a full state save and still keep the reserve. */
+  ensureRoomForStateSave(what: string): void {
+    this.live();
+    ensureHeapRoom(this.freeHeapBytes(), this.stateSaveHeapBytes(), this.minFreeHeapBytes, what);
   }
 
   /** Free bytes in Jolt's fixed 128 MiB heap. */

@@ -1,6 +1,7 @@
 // Jolt state I/O: the fast in-memory form (StateRecorderImpl, opaque bytes inside WASM) and the byte form
 // (StateRecorderJS, copied out to a Uint8Array for disk and the wire). Both are owned by their creator.
 import type { JoltModule } from './jolt-backend.ts';
+import type { PhysicsWorld } from './physics-world.ts';
 
 type J = JoltModule;
 /** Any Jolt state recorder. */
@@ -85,6 +86,21 @@ export class FastStateBuffer {
     this.assertLive();
     this.recorder.Clear();
     save(this.recorder);
+  }
+
+  /**
+   * Saves a whole world (SaveState with everything) after checking that the heap can take it: the buffer grows on
+   * the WASM heap, and running out there would abort the module. Throws a clear Error instead.
+   */
+  saveWorld(world: PhysicsWorld): void {
+    this.assertLive();
+    world.ensureRoomForStateSave('FastStateBuffer.saveWorld');
+    this.save((r) => world.system.SaveState(r, this.J.EStateRecorderState_All));
+  }
+
+  /** Restores what saveWorld saved into `world`; false if Jolt refused (its body set differs). */
+  restoreWorld(world: PhysicsWorld): boolean {
+    return this.restore((r) => world.system.RestoreState(r));
   }
 
   /** Rewinds and lets `restore` read from the start. */

@@ -1,5 +1,5 @@
 // Test helpers for the physics layer: a world loaded with the package's .wasm, a ground slab, stepping until bodies
-// sleep, and small vector utilities.
+// sleep, small vector utilities and raw heap ballast for nearly-full-heap tests.
 import '../../server/physics-node.ts';
 import { PhysicsWorld, type BodyHandle, type BodyOptions, type PhysicsWorldOptions, type QuatLike, type Vec3Like } from '../../shared/physics/index.ts';
 
@@ -49,5 +49,22 @@ export function rotate(q: QuatLike, v: Vec3Like): Vec3Like {
     x: v.x + q.w * tx + (q.y * tz - q.z * ty),
     y: v.y + q.w * ty + (q.z * tx - q.x * tz),
     z: v.z + q.w * tz + (q.x * ty - q.y * tx),
+  };
+}
+
+/** Raw WASM allocations that eat heap without Jolt knowing: brings free memory down to about `targetFreeBytes`. */
+export function ballast(w: PhysicsWorld, targetFreeBytes: number): () => void {
+  const J = w.jolt as unknown as { _webidl_malloc(n: number): number; _webidl_free(p: number): void };
+  const blocks: number[] = [];
+  let chunk = 4 * 1024 * 1024;
+  while (w.freeHeapBytes() > targetFreeBytes + 256) {
+    const room = w.freeHeapBytes() - targetFreeBytes;
+    while (chunk > 128 && chunk > room) chunk >>= 1;
+    const p = J._webidl_malloc(chunk);
+    if (p === 0) break;
+    blocks.push(p);
+  }
+  return () => {
+    for (const p of blocks.reverse()) J._webidl_free(p);
   };
 }

@@ -2,7 +2,7 @@
 // short or garbage bytes fail without harming the module; neither form leaks.
 import { describe, expect, it } from 'vitest';
 import { FastStateBuffer, restoreStateBytes, saveStateBytes, type PhysicsWorld } from '../../../shared/physics/index.ts';
-import { addGround, makeWorld } from '../../helpers/physics.ts';
+import { addGround, ballast, makeWorld } from '../../helpers/physics.ts';
 
 async function pile(): Promise<PhysicsWorld> {
   const w = await makeWorld();
@@ -117,6 +117,26 @@ describe('state-recorder', () => {
     const before = w.freeHeapBytes();
     for (let i = 0; i < 1000; i++) cycle();
     expect(w.freeHeapBytes()).toBe(before);
+    w.destroy();
+  });
+
+  it('saves a whole world with saveWorld only when the heap can hold it, refusing with a clear Error otherwise', async () => {
+    const w = await pile();
+    const buf = new FastStateBuffer(w.jolt);
+    const need = w.stateSaveHeapBytes();
+    expect(need).toBeGreaterThan(41 * 1200);
+    const release = ballast(w, w.minFreeHeapBytes + need - 4096);
+    try {
+      expect(() => buf.saveWorld(w)).toThrow(/FastStateBuffer.saveWorld: the WASM heap is nearly full \(\d+\.\d MiB free, ~0\.\d MiB needed, 8\.0 MiB kept in reserve/);
+      w.stepFixed(); // the world is unharmed
+    } finally {
+      release();
+    }
+    buf.saveWorld(w);
+    const first = trace(w, 20);
+    expect(buf.restoreWorld(w)).toBe(true);
+    expect(trace(w, 20)).toEqual(first);
+    buf.dispose();
     w.destroy();
   });
 });

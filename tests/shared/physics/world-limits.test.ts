@@ -4,24 +4,7 @@
 import { describe, expect, it } from 'vitest';
 import { CharacterController, estimateShapeBytes, PhysicsWorld, type BodyHandle, type ShapeSpec } from '../../../shared/physics/index.ts';
 import { estimateWorldHeapBytes, resolveWorldLimits } from '../../../shared/physics/world-limits.ts';
-import { addGround, makeWorld, run } from '../../helpers/physics.ts';
-
-/** Raw WASM allocations that eat heap without Jolt knowing: brings free memory down to about `targetFreeBytes`. */
-function ballast(w: PhysicsWorld, targetFreeBytes: number): () => void {
-  const J = w.jolt as unknown as { _webidl_malloc(n: number): number; _webidl_free(p: number): void };
-  const blocks: number[] = [];
-  let chunk = 4 * 1024 * 1024;
-  while (w.freeHeapBytes() > targetFreeBytes + 256) {
-    const room = w.freeHeapBytes() - targetFreeBytes;
-    while (chunk > 128 && chunk > room) chunk >>= 1;
-    const p = J._webidl_malloc(chunk);
-    if (p === 0) break;
-    blocks.push(p);
-  }
-  return () => {
-    for (const p of blocks.reverse()) J._webidl_free(p);
-  };
-}
+import { addGround, ballast, makeWorld, run } from '../../helpers/physics.ts';
 
 /** A flat grid mesh of size × size quads (2·size² triangles). */
 function gridMesh(size: number): ShapeSpec {
