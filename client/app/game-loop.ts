@@ -8,7 +8,7 @@ import type { Hud } from './hud.ts';
 import type { InputController } from './input-controller.ts';
 import { NetHistory } from './net-history.ts';
 import type { NetSession, SessionWelcome } from './session-types.ts';
-import type { HookBody, HookCharacter } from './test-hook.ts';
+import type { SnapshotView } from '../../shared/protocol/snapshot-frame.ts';
 import type { WorldView } from './world-view.ts';
 
 /** What the loop reports to the page each frame (and the test hook reads). */
@@ -18,8 +18,8 @@ export interface LoopState {
   renderTick: number;
   bufferDepth: number;
   delayMs: number;
-  bodies: HookBody[];
-  characters: HookCharacter[];
+  /** The interpolated view drawn last (the hook copies bodies and characters out of it only when read). */
+  view: SnapshotView | null;
   /** True while the follow camera tracks our character. */
   following: boolean;
   /** The last frame's camera and canvas size. */
@@ -30,7 +30,7 @@ export interface LoopState {
 export class GameLoop {
   readonly timer = new FrameTimer();
   readonly history: NetHistory;
-  readonly state: LoopState = { framesRendered: 0, firstFrameMs: null, renderTick: 0, bufferDepth: 0, delayMs: 0, bodies: [], characters: [], following: false, camera: null };
+  readonly state: LoopState = { framesRendered: 0, firstFrameMs: null, renderTick: 0, bufferDepth: 0, delayMs: 0, view: null, following: false, camera: null };
   /** Force the orbit camera even when we have a character (V toggles it). */
   orbitOnly = false;
 
@@ -110,23 +110,11 @@ export class GameLoop {
     s.renderTick = f.renderTick;
     s.bufferDepth = f.bufferDepth;
     s.delayMs = f.delayMs;
-    s.bodies = [];
-    s.characters = [];
-    let mine: HookCharacter | null = null;
-    if (f.view) {
-      const v = f.view;
-      for (let i = 0; i < v.ids.length; i++) {
-        s.bodies.push({ id: v.ids[i], position: [v.positions[i * 3], v.positions[i * 3 + 1], v.positions[i * 3 + 2]], rotation: [v.rotations[i * 4], v.rotations[i * 4 + 1], v.rotations[i * 4 + 2], v.rotations[i * 4 + 3]] });
-      }
-      for (const c of v.characters) {
-        const hc: HookCharacter = { playerId: c.playerId, bodyId: c.bodyId, position: [c.position.x, c.position.y, c.position.z] };
-        s.characters.push(hc);
-        if (c.playerId === this.welcome.playerId) mine = hc;
-      }
-    }
+    s.view = f.view;
+    const mine = f.view?.characters.find((c) => c.playerId === this.welcome.playerId) ?? null;
     let camera: CameraView;
     if (mine && !this.orbitOnly) {
-      camera = this.follow.view(mine.position, this.input.yawRadians, this.input.pitchRadians, dt);
+      camera = this.follow.view([mine.position.x, mine.position.y, mine.position.z], this.input.yawRadians, this.input.pitchRadians, dt);
       s.following = true;
     } else {
       if (s.following) this.follow.reset();

@@ -9,7 +9,8 @@ import { hideMessage, showMessage } from './overlay.ts';
 import { openSession } from './session.ts';
 import type { NetSession, SessionWelcome } from './session-types.ts';
 import { fetchLobby, showStartScreen } from './start-screen.ts';
-import { installTestHook, type TaosState } from './test-hook.ts';
+import { installTestHook, type HookBody, type TaosState } from './test-hook.ts';
+import type { SnapshotView } from '../../shared/protocol/snapshot-frame.ts';
 import { WorldView } from './world-view.ts';
 
 const byId = <T extends HTMLElement>(id: string): T => {
@@ -48,8 +49,8 @@ function hookState(): TaosState {
     frameTiming: loop ? loop.timer.summary() : { frames: 0, fps: 0, meanIntervalMs: 0, p50IntervalMs: 0, p95IntervalMs: 0, meanCpuMs: 0, p95CpuMs: 0 },
     adapter: page.renderer?.adapter ?? null,
     error: page.error,
-    bodies: s ? s.bodies : [],
-    characters: s ? s.characters : [],
+    bodies: s?.view ? hookBodies(s.view) : [],
+    characters: s?.view ? s.view.characters.map((c) => ({ playerId: c.playerId, bodyId: c.bodyId, position: [c.position.x, c.position.y, c.position.z] as [number, number, number] })) : [],
     sensors: page.world?.sensors() ?? [],
     events: page.hud?.feedLines() ?? [],
     net: {
@@ -62,6 +63,14 @@ function hookState(): TaosState {
     },
     camera: s?.camera ? { ...s.camera, eye: [...s.camera.eye], target: [...s.camera.target] } : null,
   };
+}
+
+function hookBodies(v: SnapshotView): HookBody[] {
+  const out: HookBody[] = [];
+  for (let i = 0; i < v.ids.length; i++) {
+    out.push({ id: v.ids[i], position: [v.positions[i * 3], v.positions[i * 3 + 1], v.positions[i * 3 + 2]], rotation: [v.rotations[i * 4], v.rotations[i * 4 + 1], v.rotations[i * 4 + 2], v.rotations[i * 4 + 3]] });
+  }
+  return out;
 }
 
 function fail(title: string, detail: string, action?: { label: string; run: () => void }): void {

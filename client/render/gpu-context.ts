@@ -36,6 +36,8 @@ export interface GpuContext {
   device: GPUDevice;
   context: GPUCanvasContext;
   format: GPUTextureFormat;
+  /** The format to render through: the sRGB view of `format` when there is one (the GPU then encodes gamma). */
+  viewFormat: GPUTextureFormat;
   adapter: AdapterSummary;
   /** Resolves when the device is lost (never, normally); the message says why. */
   lost: Promise<string>;
@@ -71,12 +73,13 @@ export async function initGpu(canvas: HTMLCanvasElement): Promise<GpuContext> {
     throw new WebGpuUnavailableError(GpuFailure.NoContext, 'The canvas refused a WebGPU context.');
   }
   const format = gpu.getPreferredCanvasFormat();
-  context.configure({ device, format, alphaMode: 'opaque' });
+  const srgbView: GPUTextureFormat | null = format === 'bgra8unorm' ? 'bgra8unorm-srgb' : format === 'rgba8unorm' ? 'rgba8unorm-srgb' : null;
+  context.configure({ device, format, alphaMode: 'opaque', viewFormats: srgbView ? [srgbView] : [] });
   device.addEventListener('uncapturederror', (event) => {
     console.error(`WebGPU error: ${(event as GPUUncapturedErrorEvent).error.message}`);
   });
   const lost = device.lost.then((info) => `${info.reason}: ${info.message}`);
-  return { device, context, format, adapter: summarizeAdapter(adapter), lost };
+  return { device, context, format, viewFormat: srgbView ?? format, adapter: summarizeAdapter(adapter), lost };
 }
 
 function summarizeAdapter(adapter: GPUAdapter): AdapterSummary {

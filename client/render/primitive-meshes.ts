@@ -3,9 +3,9 @@
 import { MeshBuilder, type MeshData } from './mesh-data.ts';
 
 /** Segments around the Y axis for round shapes. */
-export const ROUND_SEGMENTS = 24;
+export const ROUND_SEGMENTS = 16;
 /** Rings from pole to pole for spheres (capsule caps use half of them each). */
-export const SPHERE_RINGS = 12;
+export const SPHERE_RINGS = 8;
 
 /** A cube spanning −1…1 on every axis with flat faces. */
 export function unitBoxMesh(): MeshData {

@@ -62,6 +62,11 @@ const DEFAULT_LIGHTING: SceneLighting = {
   gridMajorEvery: 10,
 };
 
+/** The sRGB decode (display value → linear), as the shader does it, for uniforms and clear values. */
+function srgbToLinear(v: number): number {
+  return v <= 0.04045 ? v / 12.92 : Math.pow((v + 0.055) / 1.055, 2.4);
+}
+
 const DEFAULT_STYLE: BodyStyle = { color: [0.7, 0.7, 0.72], emissive: 0, flags: 0, visible: true };
 const DEPTH_FORMAT: GPUTextureFormat = 'depth24plus';
 
@@ -87,10 +92,13 @@ export class Renderer {
   private staticPacked: PackedInstances = { data: new Float32Array(0), count: 0, ranges: [] };
   private dynamicBuffer: GPUBuffer | null = null;
   private destroyed = false;
+  /** True when the target has no sRGB view and the shader must encode gamma itself. */
+  private readonly encodesInShader: boolean;
 
   private constructor(canvas: HTMLCanvasElement, gpu: GpuContext) {
     this.canvas = canvas;
     this.gpu = gpu;
+    this.encodesInShader = !gpu.viewFormat.endsWith('-srgb');
     this.adapter = gpu.adapter;
     this.lost = gpu.lost;
     const device = gpu.device;
@@ -118,7 +126,7 @@ export class Renderer {
           },
         ],
       },
-      fragment: { module, entryPoint: 'fsMain', targets: [{ format: gpu.format }] },
+      fragment: { module, entryPoint: 'fsMain', targets: [{ format: gpu.viewFormat }], constants: { ENCODE_SRGB: this.encodesInShader ? 1 : 0 } },
       primitive: { topology: 'triangle-list', cullMode: 'back', frontFace: 'ccw' },
       depthStencil: { format: DEPTH_FORMAT, depthWriteEnabled: true, depthCompare: 'less' },
     });
@@ -173,9 +181,10 @@ export class Renderer {
     }
 
     const encoder = device.createCommandEncoder({ label: 'frame' });
-    const c = this.lighting.clearColor;
+    // Clear values are in the target's space: linear through an sRGB view, display values otherwise.
+    const c = this.encodesInShader ? this.lighting.clearColor : this.lighting.clearColor.map(srgbToLinear);
     const pass = encoder.beginRenderPass({
-      colorAttachments: [{ view: this.gpu.context.getCurrentTexture().createView(), clearValue: { r: c[0], g: c[1], b: c[2], a: 1 }, loadOp: 'clear', storeOp: 'store' }],
+      colorAttachments: [{ view: this.gpu.context.getCurrentTexture().createView({ format: this.gpu.viewFormat }), clearValue: { r: c[0], g: c[1], b: c[2], a: 1 }, loadOp: 'clear', storeOp: 'store' }],
       depthStencilAttachment: { view: this.depthView(width, height), depthClearValue: 1, depthLoadOp: 'clear', depthStoreOp: 'store' },
     });
     pass.setPipeline(this.pipeline);
@@ -281,7 +290,7 @@ export class Renderer {
     f.set([...L.lightColor, 1], 24);
     f.set([...L.skyColor, 1], 28);
     f.set([...L.groundColor, 1], 32);
-    f.set([...L.clearColor, L.fogDensityPerMetre], 36);
+    f.set([...L.clearColor.map(srgbToLinear), L.fogDensityPerMetre], 36);
     f.set([L.gridCellMetres, L.gridMajorEvery, 0.06, 0], 40);
     this.gpu.device.queue.writeBuffer(this.frameBuffer, 0, f);
   }

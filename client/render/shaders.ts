@@ -20,8 +20,11 @@ export const InstanceFlag = {
   Hatch: 4,
 } as const;
 
-/** The WGSL source of the one pipeline. */
+/** The WGSL source of the one pipeline. Colours are lit in linear space; ENCODE_SRGB is set when the render target
+ * does not encode gamma itself. */
 export const SCENE_SHADER_WGSL = /* wgsl */ `
+override ENCODE_SRGB: bool = false;
+
 struct Frame {
   viewProj: mat4x4f,
   cameraPos: vec4f,
@@ -29,7 +32,7 @@ struct Frame {
   lightColor: vec4f,
   skyColor: vec4f,
   groundColor: vec4f,
-  fogColor: vec4f,     // rgb, w = fog density per metre
+  fogColor: vec4f,     // linear rgb, w = fog density per metre
   grid: vec4f,         // x = cell size (m), y = major line every N cells, z = outline width (m)
 }
 @group(0) @binding(0) var<uniform> frame: Frame;
@@ -54,6 +57,14 @@ struct VsOut {
   @location(6) @interpolate(flat) scale: vec3f,
 }
 
+// The sRGB transfer functions (what an -srgb render target applies in hardware).
+fn srgbToLinear(c: vec3f) -> vec3f {
+  return select(pow((c + 0.055) / 1.055, vec3f(2.4)), c / 12.92, c <= vec3f(0.04045));
+}
+fn linearToSrgb(c: vec3f) -> vec3f {
+  return select(1.055 * pow(c, vec3f(1.0 / 2.4)) - 0.055, c * 12.92, c <= vec3f(0.0031308));
+}
+
 fn rotate(q: vec4f, v: vec3f) -> vec3f {
   let t = 2.0 * cross(q.xyz, v);
   return v + q.w * t + cross(q.xyz, t);
@@ -67,7 +78,8 @@ fn vsMain(in: VsIn) -> VsOut {
   out.clip = frame.viewProj * vec4f(world, 1.0);
   out.world = world;
   out.normal = rotate(in.rotation, normalize(in.normal / scale));
-  out.color = in.color.rgb;
+  // Colours arrive as display (sRGB-like) values: decode once per vertex, light in linear space.
+  out.color = srgbToLinear(in.color.rgb);
   out.local = in.position;
   out.flags = u32(in.posFlags.w + 0.5);
   out.emissive = in.scaleEmissive.w;
@@ -98,8 +110,7 @@ fn fsMain(in: VsOut, @builtin(front_facing) front: bool) -> @location(0) vec4f {
 
   var n = normalize(in.normal);
   if (!front) { n = -n; }
-  // Colours arrive as display (sRGB-like) values: decode for lighting, encode again on output.
-  let base = pow(in.color, vec3f(2.2));
+  let base = in.color;
   let diffuse = max(dot(n, -frame.lightDir.xyz), 0.0);
   let ambient = mix(frame.groundColor.rgb, frame.skyColor.rgb, n.y * 0.5 + 0.5);
   var lit = base * (ambient + diffuse * frame.lightColor.rgb) + base * in.emissive;
@@ -109,7 +120,8 @@ fn fsMain(in: VsOut, @builtin(front_facing) front: bool) -> @location(0) vec4f {
   }
   let dist = distance(in.world, frame.cameraPos.xyz);
   let fog = 1.0 - exp(-dist * frame.fogColor.w);
-  let color = mix(lit, pow(frame.fogColor.rgb, vec3f(2.2)), clamp(fog, 0.0, 1.0));
-  return vec4f(pow(color, vec3f(1.0 / 2.2)), 1.0);
+  let color = mix(lit, frame.fogColor.rgb, clamp(fog, 0.0, 1.0));
+  if (ENCODE_SRGB) { return vec4f(linearToSrgb(clamp(color, vec3f(0.0), vec3f(1.0))), 1.0); }
+  return vec4f(color, 1.0);
 }
 `;

@@ -296,3 +296,25 @@ export function countPixels(px: CanvasPixels, test: (r: number, g: number, b: nu
   for (let i = 0; i < px.rgba.length; i += 4) if (test(px.rgba[i], px.rgba[i + 1], px.rgba[i + 2])) n++;
   return n;
 }
+
+/** Frame figures of a page over a window: frames drawn, mean/p50/p95 frame interval and our CPU time per frame. */
+export interface FrameMeasurement {
+  frames: number;
+  meanIntervalMs: number;
+  p50IntervalMs: number;
+  p95IntervalMs: number;
+  meanCpuMs: number;
+  p95CpuMs: number;
+  /** Navigation start → first frame with the world in it (ms), from the hook. */
+  firstFrameMs: number | null;
+}
+
+/** Samples the page's frame timing for `windowMs` (the hook keeps the last 240 frames; read at the end). */
+export async function measureFrames(page: Page, windowMs: number): Promise<FrameMeasurement> {
+  type Hook = { framesRendered: number; firstFrameMs: number | null; frameTiming: Omit<FrameMeasurement, 'frames' | 'firstFrameMs'> };
+  const start = await readHook<Hook>(page);
+  await page.waitForTimeout(windowMs);
+  const end = await readHook<Hook>(page);
+  const t = end.frameTiming;
+  return { frames: end.framesRendered - start.framesRendered, meanIntervalMs: t.meanIntervalMs, p50IntervalMs: t.p50IntervalMs, p95IntervalMs: t.p95IntervalMs, meanCpuMs: t.meanCpuMs, p95CpuMs: t.p95CpuMs, firstFrameMs: end.firstFrameMs };
+}
