@@ -1,10 +1,38 @@
 // BodyOptions handling: resolving motion, validating every tunable, and copying them into Jolt BodyCreationSettings.
 import type { JoltModule } from './jolt-backend.ts';
 import { checkNoCollideGroup } from './body-slots.ts';
-import { checkVec3 } from './shapes.ts';
-import type { BodyOptions, MotionKind, Vec3Like } from './types.ts';
+import { assertGroupBits, CollisionLayer, packObjectLayer } from './layers.ts';
+import { checkVec3, type JoltShape } from './shapes.ts';
+import type { BodyOptions, MotionKind, QuatLike, Vec3Like } from './types.ts';
 
 type J = JoltModule;
+
+/** A body's groups: `opts.layer`/`mask`, or the defaults (Trigger for sensors, World for statics, else Prop; mask All). */
+export function resolveLayerMask(opts: BodyOptions, motion: MotionKind, what: string): { layer: number; mask: number } {
+  const sensor = opts.isSensor === true || opts.sensor !== undefined;
+  const layer = opts.layer ?? (sensor ? CollisionLayer.Trigger : motion === 'static' ? CollisionLayer.World : CollisionLayer.Prop);
+  const mask = opts.mask ?? CollisionLayer.All;
+  assertGroupBits(layer, `${what}: layer`);
+  assertGroupBits(mask, `${what}: mask`);
+  return { layer, mask };
+}
+
+/**
+ * A BodyCreationSettings for a validated body (the caller destroys it) and the motion type Jolt gets. A static
+ * Jolt sensor loses every body that falls asleep inside it (a spurious exit); Jolt keeps an active kinematic sensor
+ * awake and lets it see sleeping bodies, so a 'static' sensor becomes a kinematic one that never moves.
+ */
+export function makeCreationSettings(J: J, shape: JoltShape, pos: Vec3Like, rot: QuatLike, motion: MotionKind, layer: number, mask: number, opts: BodyOptions, isSensor: boolean): { settings: InstanceType<J['BodyCreationSettings']>; joltMotion: MotionKind } {
+  const joltMotion: MotionKind = isSensor && motion === 'static' ? 'kinematic' : motion;
+  const motionType = joltMotion === 'static' ? J.EMotionType_Static : joltMotion === 'kinematic' ? J.EMotionType_Kinematic : J.EMotionType_Dynamic;
+  const rPos = new J.RVec3(pos.x, pos.y, pos.z); // copied into the settings, freed below
+  const qRot = new J.Quat(rot.x, rot.y, rot.z, rot.w); // copied into the settings, freed below
+  const settings = new J.BodyCreationSettings(shape, rPos, qRot, motionType, packObjectLayer(J, layer, mask)); // the caller destroys it
+  J.destroy(rPos);
+  J.destroy(qRot);
+  applyBodyOptions(J, settings, opts, motion, isSensor);
+  return { settings, joltMotion };
+}
 
 /** Copies the tunables of `opts` into a BodyCreationSettings (restitution defaults to 0.2). */
 export function applyBodyOptions(J: J, settings: InstanceType<J['BodyCreationSettings']>, opts: BodyOptions, motion: MotionKind, isSensor: boolean): void {

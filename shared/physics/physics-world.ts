@@ -2,8 +2,9 @@
 // limits. Owns every Jolt object it creates; callers only ever see plain copies and BodyHandles.
 import { BodyHandle, type BodyRole, type JoltBody } from './body-handle.ts';
 import { loadJolt, type JoltModule } from './jolt-backend.ts';
-import { assertGroupBits, CollisionLayer, createLayerFilters, packObjectLayer, type LayerFilters } from './layers.ts';
-import { applyBodyOptions, flattenPoints, resolveMotion, validateBodyOptions } from './body-options.ts';
+import { createLayerFilters, type LayerFilters } from './layers.ts';
+import { flattenPoints, makeCreationSettings, resolveLayerMask, resolveMotion, validateBodyOptions } from './body-options.ts';
+import { BodyTable } from './body-table.ts';
 import * as motion from './body-motion.ts';
 import { ConstraintRegistry, pointLink } from './constraints.ts';
 import { RayQueries, type RayHit } from './queries.ts';
@@ -12,7 +13,7 @@ import { BodySlots } from './body-slots.ts';
 import { BodyStateReader, type BodyStates } from './body-state-reader.ts';
 import { buildValidatedShape, checkQuat, checkVec3, estimateShapeBytes, STATIC_ONLY_KINDS, validateShapeSpec, type JoltShape, type ShapeSpec } from './shapes.ts';
 import { IDENTITY_QUAT, type BodyOptions, type MotionKind, type QuatLike, type Vec3Like } from './types.ts';
-import { ensureHeapRoom, ensureRoomForWorld, resolveWorldLimits, StepBudget, type PhysicsWorldOptions, type WorldLimits } from './world-limits.ts';
+import { ensureHeapRoom, ensureRoomForWorld, estimateStateSaveBytes, resolveWorldLimits, StepBudget, type PhysicsWorldOptions, type WorldLimits } from './world-limits.ts';
 
 export type { PhysicsWorldOptions } from './world-limits.ts';
 
@@ -22,9 +23,6 @@ const MAX_STEP_SECONDS = 1 / 30;
 const SUBSTEP_THRESHOLD_SECONDS = 1 / 55;
 /** Heap bytes reserved per constraint (measured ≤ 700 B for a hinge). */
 const CONSTRAINT_HEAP_BYTES = 4096;
-/** Saved state per body and per constraint, with room for contacts (measured 297-943 B per body). */
-const STATE_BYTES_PER_BODY = 1200;
-const STATE_BYTES_PER_CONSTRAINT = 256;
 
 type J = JoltModule;
 
@@ -39,10 +37,7 @@ export class PhysicsWorld {
   /** @internal Deterministic Jolt BodyID allocation (checkpoints save and restore it). */
   readonly slots: BodySlots;
   private readonly joltInterface: InstanceType<J['JoltInterface']>;
-  private readonly records = new Map<number, BodyHandle>();
-  private readonly byJoltId = new Map<number, BodyHandle>();
-  private readonly sensorJoltIds = new Set<number>();
-  private sortedIds: number[] = [];
+  private readonly table = new BodyTable();
   private readonly constraints: ConstraintRegistry;
   private readonly stepBudget: StepBudget;
   /** Stable ids of linear-cast (CCD) bodies: each takes step memory (see world-limits.ts). */
@@ -76,9 +71,9 @@ export class PhysicsWorld {
     this.slots = new BodySlots(J, this.bodyInterface, this.maxBodies); // owned here; disposed in destroy()
     this.stateReader = new BodyStateReader(J);
     this.sensors = new SensorHub(J, this.system, {
-      stableIdOf: (joltId) => this.byJoltId.get(joltId)?.id,
-      isSensorJoltId: (joltId) => this.sensorJoltIds.has(joltId),
-      isStaticJoltId: (joltId) => this.byJoltId.get(joltId)?.motion === 'static',
+      stableIdOf: (joltId) => this.table.byJoltId(joltId)?.id,
+      isSensorJoltId: (joltId) => this.table.isSensorJoltId(joltId),
+      isStaticJoltId: (joltId) => this.table.byJoltId(joltId)?.motion === 'static',
     });
     this.setGravity(gravity.x, gravity.y, gravity.z);
   }
@@ -129,8 +124,8 @@ export class PhysicsWorld {
   private deliverSensorEvents(): SensorEvent[] {
     const events = this.sensors.drain();
     for (const e of events) {
-      const sensor = this.records.get(e.sensorId);
-      const other = this.records.get(e.otherId);
+      const sensor = this.table.get(e.sensorId);
+      const other = this.table.get(e.otherId);
       const cb = e.kind === 'enter' ? sensor?.sensor?.onEnter : sensor?.sensor?.onExit;
       cb?.(other);
     }
@@ -186,7 +181,7 @@ export class PhysicsWorld {
    */
   addShape(spec: ShapeSpec, pos: Vec3Like, rot: QuatLike | null = null, opts: BodyOptions = {}, at?: { id: number; joltId: number }): BodyHandle {
     this.live();
-    if (at && this.records.has(at.id)) throw new Error(`addShape: stable id ${at.id} is already in use`);
+    if (at && this.table.get(at.id)) throw new Error(`addShape: stable id ${at.id} is already in use`);
     const what = `${spec?.kind ?? 'shape'}${opts.name ? ` "${opts.name}"` : ''}`;
     const motion = resolveMotion(opts);
     if (spec && STATIC_ONLY_KINDS.has(spec.kind) && motion === 'dynamic') {
@@ -195,7 +190,7 @@ export class PhysicsWorld {
     if (spec?.kind === 'heightField' && motion !== 'static') throw new Error(`${what}: a height field can only be static`);
     checkVec3(pos, what, 'position');
     if (rot) checkQuat(rot, what, 'rotation');
-    const { layer, mask } = this.resolveLayerMask(opts, motion, what);
+    const { layer, mask } = resolveLayerMask(opts, motion, what);
     validateBodyOptions(opts, what);
     validateShapeSpec(spec, what);
     this.ensureRoom(estimateShapeBytes(spec) + 2048, what);
@@ -216,30 +211,18 @@ export class PhysicsWorld {
     return handle;
   }
 
-  private resolveLayerMask(opts: BodyOptions, motion: MotionKind, what: string): { layer: number; mask: number } {
-    const sensor = opts.isSensor === true || opts.sensor !== undefined;
-    const layer = opts.layer ?? (sensor ? CollisionLayer.Trigger : motion === 'static' ? CollisionLayer.World : CollisionLayer.Prop);
-    const mask = opts.mask ?? CollisionLayer.All;
-    assertGroupBits(layer, `${what}: layer`);
-    assertGroupBits(mask, `${what}: mask`);
-    return { layer, mask };
-  }
-
   /** Throws a clear Error when the world is full or the heap cannot take `bytes` more. */
   ensureRoom(bytes: number, what: string): void {
     this.live();
-    if (this.records.size >= this.maxBodies) {
+    if (this.table.size >= this.maxBodies) {
       throw new Error(`${what}: the world is full (${this.maxBodies} bodies, the maxBodies limit of PhysicsWorld.create)`);
     }
     ensureHeapRoom(this.freeHeapBytes(), bytes, this.minFreeHeapBytes, what);
   }
 
-  /**
-   * Heap bytes a full state save (SaveState with contacts) may take at its peak: measured up to 943 B per body in a
-   * pile, and the in-memory buffer grows by doubling, so 2.5× that.
-   */
+  /** Heap bytes a full state save (SaveState with contacts) of this world may take at its peak. */
   stateSaveHeapBytes(): number {
-    return Math.ceil(2.5 * (4096 + STATE_BYTES_PER_BODY * this.records.size + STATE_BYTES_PER_CONSTRAINT * this.constraints.size));
+    return estimateStateSaveBytes(this.table.size, this.constraints.size);
   }
 
   /** Throws a clear Error unless the heap can take a full state save and still keep the reserve. */
@@ -255,24 +238,14 @@ export class PhysicsWorld {
 
   private createBody(shape: JoltShape, spec: ShapeSpec, pos: Vec3Like, rot: QuatLike, motion: MotionKind, layer: number, mask: number, opts: BodyOptions, what: string, at?: { id: number; joltId: number }): BodyHandle {
     const J = this.jolt;
-    const rPos = new J.RVec3(pos.x, pos.y, pos.z); // copied into the settings, freed below
-    const qRot = new J.Quat(rot.x, rot.y, rot.z, rot.w); // copied into the settings, freed below
     const isSensor = opts.isSensor === true || opts.sensor !== undefined;
-    // A static Jolt sensor loses every body that falls asleep inside it (a spurious exit). Jolt keeps an active
-    // kinematic sensor awake and lets it see sleeping bodies, so a 'static' sensor is a kinematic one that never moves.
-    const joltMotion = isSensor && motion === 'static' ? 'kinematic' : motion;
-    const motionType = joltMotion === 'static' ? J.EMotionType_Static : joltMotion === 'kinematic' ? J.EMotionType_Kinematic : J.EMotionType_Dynamic;
-    const objectLayer = packObjectLayer(J, layer, mask);
-    const settings = new J.BodyCreationSettings(shape, rPos, qRot, motionType, objectLayer); // freed below
-    J.destroy(rPos);
-    J.destroy(qRot);
-    applyBodyOptions(J, settings, opts, motion, isSensor);
+    const { settings, joltMotion } = makeCreationSettings(J, shape, pos, rot, motion, layer, mask, opts, isSensor); // freed below
     if (opts.noCollideGroup !== undefined) this.slots.applyNoCollideGroup(settings, opts.noCollideGroup);
     let body: JoltBody;
     try {
       body = this.slots.create(settings, at?.joltId); // at the deterministic BodyID (see body-slots.ts)
     } catch (err) {
-      throw new Error(`${what}: ${(err as Error).message} (the world holds ${this.records.size} of maxBodies ${this.maxBodies})`);
+      throw new Error(`${what}: ${(err as Error).message} (the world holds ${this.table.size} of maxBodies ${this.maxBodies})`);
     } finally {
       J.destroy(settings);
     }
@@ -300,13 +273,8 @@ export class PhysicsWorld {
       userData: info.opts.userData,
       sensor: info.opts.sensor,
     });
-    this.records.set(id, handle);
-    this.byJoltId.set(joltId, handle);
+    this.table.add(handle);
     this.stateReader.invalidate();
-    if (info.isSensor) this.sensorJoltIds.add(joltId);
-    const ids = this.sortedIds;
-    if (ids.length === 0 || ids[ids.length - 1] < id) ids.push(id);
-    else ids.splice(lowerBound(ids, id), 0, id);
     return handle;
   }
 
@@ -314,21 +282,17 @@ export class PhysicsWorld {
   untrack(handle: BodyHandle): void {
     this.sensors.forgetBody(handle.joltId);
     this.slots.release(handle.joltId);
-    this.records.delete(handle.id);
-    this.byJoltId.delete(handle.joltId);
+    this.table.delete(handle);
     this.stateReader.invalidate();
-    this.sensorJoltIds.delete(handle.joltId);
     if (this.ccdIds.delete(handle.id)) this.stepBudget.release('ccdBody');
-    const i = lowerBound(this.sortedIds, handle.id);
-    if (this.sortedIds[i] === handle.id) this.sortedIds.splice(i, 1);
     handle.removed = true;
   }
 
   /** Removes and destroys a body (and any constraint attached to it). Its sensor overlaps close with exit events. */
   removeBody(handleOrId: BodyHandle | number): void {
     this.live();
-    const handle = typeof handleOrId === 'number' ? this.records.get(handleOrId) : handleOrId;
-    if (!handle || handle.removed || this.records.get(handle.id) !== handle) {
+    const handle = typeof handleOrId === 'number' ? this.table.get(handleOrId) : handleOrId;
+    if (!this.table.owns(handle)) {
       throw new Error(`removeBody: no body ${typeof handleOrId === 'number' ? handleOrId : handleOrId.id} in this world`);
     }
     if (handle.role === 'character') throw new Error(`removeBody: body ${handle.id} belongs to a CharacterController; destroy the controller`);
@@ -343,8 +307,8 @@ export class PhysicsWorld {
   clear(): void {
     this.live();
     this.releaseConstraints(this.constraints.clear());
-    for (const id of [...this.sortedIds].reverse()) {
-      const h = this.records.get(id)!;
+    for (const id of [...this.table.sortedIds].reverse()) {
+      const h = this.table.get(id)!;
       if (h.role !== 'character') this.removeBody(h);
     }
     this.sensors.drain();
@@ -369,22 +333,22 @@ export class PhysicsWorld {
 
   /** Number of tracked bodies (including characters' inner bodies). */
   get bodyCount(): number {
-    return this.records.size;
+    return this.table.size;
   }
 
   /** The handle for a stable id, or undefined. */
   getBody(id: number): BodyHandle | undefined {
-    return this.records.get(id);
+    return this.table.get(id);
   }
 
   /** @internal The handle for a Jolt BodyID index+sequence number. */
   bodyByJoltId(joltId: number): BodyHandle | undefined {
-    return this.byJoltId.get(joltId);
+    return this.table.byJoltId(joltId);
   }
 
   /** Stable ids of every tracked body, ascending (a copy). */
   bodyIds(): number[] {
-    return this.sortedIds.slice();
+    return this.table.sortedIds.slice();
   }
 
   /** The id the next body will get; with setNextBodyId, lets checkpoints restore id allocation. */
@@ -411,8 +375,8 @@ export class PhysicsWorld {
 
   private handleOf(b: BodyHandle | number, what: string): BodyHandle {
     this.live();
-    const h = typeof b === 'number' ? this.records.get(b) : b;
-    if (!h || h.removed || this.records.get(h.id) !== h) throw new Error(`${what}: no body ${typeof b === 'number' ? b : b.id} in this world`);
+    const h = typeof b === 'number' ? this.table.get(b) : b;
+    if (!this.table.owns(h)) throw new Error(`${what}: no body ${typeof b === 'number' ? b : b.id} in this world`);
     return h;
   }
 
@@ -480,13 +444,13 @@ export class PhysicsWorld {
    */
   readBodyStates(): BodyStates {
     this.live();
-    return this.stateReader.read(this.sortedIds, this.records);
+    return this.stateReader.read(this.table.sortedIds, this.table.byId);
   }
 
   /** Ids (ascending) of awake non-static bodies outside the box [min, max] or with a non-finite position. */
   awakeBodiesOutside(min: Vec3Like, max: Vec3Like): number[] {
     this.live();
-    return this.stateReader.awakeOutside(this.sortedIds, this.records, min, max);
+    return this.stateReader.awakeOutside(this.table.sortedIds, this.table.byId, min, max);
   }
 
   // ── constraints ───────────────────────────────────────────────────────────────────────────────────────────
@@ -498,8 +462,7 @@ export class PhysicsWorld {
   addConstraint(settings: InstanceType<J['TwoBodyConstraintSettings']>, a: BodyHandle, b: BodyHandle): InstanceType<J['Constraint']> {
     try {
       this.live();
-      const own = (h: BodyHandle): boolean => !!h && !h.removed && this.records.get(h.id) === h;
-      if (!own(a) || !own(b)) throw new Error('addConstraint: both bodies must be live bodies of this world');
+      if (!this.table.owns(a) || !this.table.owns(b)) throw new Error('addConstraint: both bodies must be live bodies of this world');
       if (a === b) throw new Error(`addConstraint: a constraint joins two different bodies, got body ${a.id} twice`);
       if (a.motion !== 'dynamic' && b.motion !== 'dynamic') {
         throw new Error(`addConstraint: bodies ${a.id} (${a.motion}) and ${b.id} (${b.motion}) cannot move; at least one must be dynamic`);
@@ -533,15 +496,4 @@ export class PhysicsWorld {
   get constraintCount(): number {
     return this.constraints.size;
   }
-}
-
-function lowerBound(arr: number[], value: number): number {
-  let lo = 0;
-  let hi = arr.length;
-  while (lo < hi) {
-    const mid = (lo + hi) >>> 1;
-    if (arr[mid] < value) lo = mid + 1;
-    else hi = mid;
-  }
-  return lo;
 }

@@ -109,6 +109,18 @@ export function ensureHeapRoom(freeBytes: number, bytes: number, minFreeBytes: n
   }
 }
 
+/** Saved state per body and per constraint, with room for contacts (measured 297-943 B per body). */
+const STATE_BYTES_PER_BODY = 1200;
+const STATE_BYTES_PER_CONSTRAINT = 256;
+
+/**
+ * Heap bytes a full state save (SaveState with contacts) into the in-memory buffer may take at its peak: the
+ * buffer grows by doubling, so 2.5× the saved size.
+ */
+export function estimateStateSaveBytes(bodies: number, constraints: number): number {
+  return Math.ceil(2.5 * (4096 + STATE_BYTES_PER_BODY * bodies + STATE_BYTES_PER_CONSTRAINT * constraints));
+}
+
 /** What grows a step's temp-memory need after creation. */
 export type StepCost = 'ccdBody' | 'constraint';
 
