@@ -121,13 +121,27 @@ export class PhysicsWorld {
     return this.deliverSensorEvents();
   }
 
+  /**
+   * Runs the sensor callbacks in event order. A callback that throws does not stop the others: every callback runs,
+   * then the first error is rethrown (the tick's events are lost to the caller, as with any throwing step).
+   */
   private deliverSensorEvents(): SensorEvent[] {
     const events = this.sensors.drain();
+    let failure: { error: unknown; event: SensorEvent } | undefined;
     for (const e of events) {
       const sensor = this.table.get(e.sensorId);
-      const other = this.table.get(e.otherId);
       const cb = e.kind === 'enter' ? sensor?.sensor?.onEnter : sensor?.sensor?.onExit;
-      cb?.(other);
+      if (!cb) continue;
+      try {
+        cb(this.table.get(e.otherId));
+      } catch (error) {
+        failure ??= { error, event: e };
+      }
+    }
+    if (failure) {
+      const { error, event } = failure;
+      const detail = error instanceof Error ? error.message : String(error);
+      throw new Error(`sensor ${event.sensorId}: its on${event.kind === 'enter' ? 'Enter' : 'Exit'} callback for body ${event.otherId} threw: ${detail}`, { cause: error });
     }
     return events;
   }

@@ -167,4 +167,34 @@ describe('sensors', () => {
     expect(ball.position().y).toBeLessThan(0);
     w.destroy();
   });
+
+  it('runs every callback even when one throws, then reports the first failure', async () => {
+    const w = await makeWorld();
+    const calls: number[] = [];
+    const zones = [0, 1, 2].map((i) =>
+      w.addBox({ x: 1, y: 0.5, z: 1 }, { x: i * 3, y: 2, z: 0 }, null, {
+        motion: 'static',
+        sensor: {
+          onEnter: () => {
+            calls.push(i);
+            if (i === 1) throw new Error('door jammed');
+          },
+        },
+      }),
+    );
+    for (let i = 0; i < 3; i++) w.addSphere(0.2, { x: i * 3, y: 3, z: 0 });
+    let thrown: Error | undefined;
+    for (let t = 0; t < 60 && !thrown; t++) {
+      try {
+        w.stepFixed();
+      } catch (err) {
+        thrown = err as Error;
+      }
+    }
+    expect(thrown?.message).toBe(`sensor ${zones[1].id}: its onEnter callback for body 5 threw: door jammed`);
+    expect(calls).toEqual([0, 1, 2]);
+    expect(w.sensorOverlaps(zones[2])).toEqual([6]); // the world kept its state
+    w.stepFixed();
+    w.destroy();
+  });
 });
