@@ -200,4 +200,24 @@ describe('physics-world memory', () => {
     figures.push(`${'world'.padEnd(14)} ${String(cycles).padStart(6)} cycles  free before ${before}  after ${after}  diff ${after - before}`);
     expect(after).toBe(before);
   });
+
+  it('leaks only Jolt\'s type factory (under 4 KB) per world created while another one lives', async () => {
+    // JoltInterface's constructor overwrites Jolt's global factory pointer without freeing the previous factory.
+    const probe = await makeWorld();
+    const free = (): number => probe.jolt.JoltInterface.prototype.sGetFreeMemory();
+    probe.destroy();
+    const overlapping = async (): Promise<void> => {
+      const a = await makeWorld();
+      const b = await makeWorld();
+      a.destroy();
+      b.destroy();
+    };
+    await overlapping();
+    const before = free();
+    for (let i = 0; i < 10; i++) await overlapping();
+    const perPair = (before - free()) / 10;
+    figures.push(`${'overlap'.padEnd(14)} ${String(10).padStart(6)} pairs   leak per world created beside another ${perPair} B`);
+    expect(perPair).toBeGreaterThanOrEqual(0);
+    expect(perPair).toBeLessThan(4096);
+  });
 });
