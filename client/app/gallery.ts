@@ -86,6 +86,7 @@ async function start(): Promise<void> {
     renderTick: 0,
     framesRendered: timer.total,
     firstFrameMs,
+    startup: { gpuReadyMs: null, welcomeMs: null },
     frameTiming: timer.summary(),
     adapter: renderer?.adapter ?? null,
     error,

@@ -30,6 +30,8 @@ const page = {
   loop: null as GameLoop | null,
   world: null as WorldView | null,
   hud: null as Hud | null,
+  gpuReadyMs: null as number | null,
+  welcomeMs: null as number | null,
 };
 
 function hookState(): TaosState {
@@ -46,6 +48,7 @@ function hookState(): TaosState {
     renderTick: s?.renderTick ?? 0,
     framesRendered: s?.framesRendered ?? 0,
     firstFrameMs: s?.firstFrameMs ?? null,
+    startup: { gpuReadyMs: page.gpuReadyMs, welcomeMs: page.welcomeMs },
     frameTiming: loop ? loop.timer.summary() : { frames: 0, fps: 0, meanIntervalMs: 0, p50IntervalMs: 0, p95IntervalMs: 0, meanCpuMs: 0, p95CpuMs: 0 },
     adapter: page.renderer?.adapter ?? null,
     error: page.error,
@@ -86,6 +89,7 @@ async function boot(): Promise<void> {
   const canvas = byId<HTMLCanvasElement>('scene');
   try {
     page.renderer = await Renderer.create(canvas);
+    page.gpuReadyMs = performance.now();
   } catch (err) {
     if (err instanceof WebGpuUnavailableError) fail('WebGPU is not available', err.message);
     else fail('The renderer failed to start', (err as Error).message);
@@ -125,6 +129,7 @@ function join(room: string | null, name: string): void {
 
   page.session = openSession(wsUrl, { name, room }, {
     onWelcome(welcome) {
+      page.welcomeMs ??= performance.now();
       page.welcome = welcome;
       page.connected = true;
       page.phase = 'playing';

@@ -33,6 +33,8 @@ export interface TaosState {
   framesRendered: number;
   /** Milliseconds from navigation start to the first frame with the world in it. */
   firstFrameMs: number | null;
+  /** Milliseconds from navigation start to the WebGPU device being ready, and to the server's welcome. */
+  startup: { gpuReadyMs: number | null; welcomeMs: number | null };
   frameTiming: FrameTimingSummary;
   adapter: AdapterSummary | null;
   /** The message shown to the user when something failed. */
