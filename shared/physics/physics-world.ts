@@ -245,6 +245,15 @@ export class PhysicsWorld {
     ensureHeapRoom(this.freeHeapBytes(), this.stateSaveHeapBytes(), this.minFreeHeapBytes, what);
   }
 
+  /**
+   * How many more linear-cast (CCD) bodies or constraints the step budget takes before factories refuse them
+   * (lets a caller drop a shot deterministically instead of catching the Error).
+   */
+  stepBudgetRoom(kind: 'ccdBody' | 'constraint'): number {
+    this.live();
+    return this.stepBudget.room(kind);
+  }
+
   /** Free bytes in Jolt's fixed 128 MiB heap. */
   freeHeapBytes(): number {
     return this.jolt.JoltInterface.prototype.sGetFreeMemory();

@@ -153,6 +153,11 @@ export class StepBudget {
     else this.constraints++;
   }
 
+  /** How many more units of `kind` fit (ignoring any other kind taken later). */
+  room(kind: StepCost): number {
+    return Math.max(0, Math.floor((this.spareBytes - this.usedBytes) / StepBudget.cost(kind)));
+  }
+
   /** Gives back one unit of `kind`. */
   release(kind: StepCost): void {
     this.usedBytes -= StepBudget.cost(kind);

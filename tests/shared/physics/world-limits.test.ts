@@ -61,10 +61,12 @@ describe('world-limits', () => {
     }
     expect(refusal?.message).toMatch(/sphere: the world's step memory is spent \(\d+ linear-cast bodies, 0 constraints; Jolt's temp allocator is a fixed 10\.0 MiB\)/);
     expect(bullets.length).toBeGreaterThan(500);
+    expect(w.stepBudgetRoom('ccdBody')).toBe(0);
     const count = w.bodyCount;
     expect(w.addSphere(0.05, { x: 0, y: -5, z: 0 }).motion).toBe('dynamic'); // discrete bodies still fit
     run(w, 3); // every CCD body awake and moving: the step fits
     w.removeBody(bullets.pop()!);
+    expect(w.stepBudgetRoom('ccdBody')).toBe(1);
     expect(() => w.addSphere(0.05, { x: 0, y: -9, z: 0 }, { motionQuality: 'linearCast' })).not.toThrow(); // its budget came back
     expect(w.bodyCount).toBe(count + 1);
     w.destroy();
