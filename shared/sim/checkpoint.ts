@@ -93,7 +93,7 @@ export function saveCheckpoint(core: SimCore): Checkpoint {
   const J = core.world.jolt;
   const buffer = new FastStateBuffer(J); // owned by the Checkpoint; freed by its dispose()
   try {
-    buffer.save((r) => core.world.system.SaveState(r, J.EStateRecorderState_All));
+    buffer.saveWorld(core.world); // checks the heap first: the buffer grows there, and running out would abort
   } catch (err) {
     buffer.dispose();
     throw err;

@@ -35,7 +35,9 @@ function leave(core: SimCore, playerId: number, tick: number): void {
 }
 
 function fire(core: SimCore, p: Player, aim: Vec3Like, tick: number): void {
-  if (core.world.bodyCount >= core.world.maxBodies) return; // a full world drops the shot (deterministically)
+  // A full world, or a step with no room left for another CCD body, drops the shot. Both limits are per world, so
+  // the drop is deterministic (the shared WASM heap is not: running short there fails the tick instead).
+  if (core.world.bodyCount >= core.world.maxBodies || core.world.stepBudgetRoom('ccdBody') <= 0) return;
   const r = core.rules;
   const pos = muzzlePosition(p.controller.position, aim);
   const opts = bulletOptions(aim, r.bulletSpeedMetresPerSecond, r.bulletsHitPlayers, p.joinIndex, p.playerId);
