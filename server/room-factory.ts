@@ -1,6 +1,6 @@
-// Builds what a room runs on: a Simulation of a registered scenario (refused with a clear Error when the shared
-// 128 MB Jolt heap could not hold another world, since running out would abort the module) and, with --record,
-// the room's input-log recorder.
+// Builds what a room runs on: a Simulation of a registered scenario on its own Jolt module instance (its own 128 MB
+// heap, so rooms cannot starve or abort each other, and a room's heap history is its session's alone) and, with
+// --record, the room's input-log recorder.
 import { Simulation } from '../shared/sim/simulation.ts';
 import type { ScenarioDefinition } from '../shared/sim/scenario.ts';
 import type { Logger } from './logger.ts';
@@ -27,6 +27,11 @@ export interface RoomFactoryOptions {
    * world's reserve). Measured: character-course ~15 MB, cubes-901 ~19 MB. Default 32 MiB.
    */
   minFreeHeapBytesForRoom?: number;
+  /**
+   * Give every room its own Jolt module instance (default true). With false, rooms share the process-wide module
+   * and its 128 MB heap, guarded by minFreeHeapBytesForRoom.
+   */
+  isolateRooms?: boolean;
 }
 
 /** A RoomFactory over Simulation.create with a heap guard and optional recording. */
@@ -52,11 +57,12 @@ export function createRoomFactory(opts: RoomFactoryOptions): RoomFactory & { liv
     async createSimulation(name, params, seed): Promise<RoomSimulationBuild> {
       const def = opts.scenarios.get(name);
       if (!def) throw new Error(`unknown scenario "${name}" (known: ${opts.scenarios.names().join(', ')})`);
-      const free = freeHeap();
+      const isolated = opts.isolateRooms ?? true;
+      const free = isolated ? null : freeHeap();
       if (free !== null && free < need) {
         throw new Error(`not enough physics memory for another room: ${(free / 1048576).toFixed(1)} MiB free of the 128 MiB WASM heap, a room needs ${(need / 1048576).toFixed(0)} MiB; close a room first`);
       }
-      const sim = await Simulation.create({ scenario: def, params, seed });
+      const sim = await Simulation.create({ scenario: def, params, seed, worldOptions: { isolatedModule: isolated } });
       live.add(sim);
       return { sim, maxBodies: sim.world.maxBodies, params: { ...sim.params }, description: def.description, bounds: def.bounds };
     },

@@ -2,7 +2,7 @@
 export { BodyFlag, BodyHandle, BODY_STATE_STRIDE, type BodyRole, type JoltBody } from './body-handle.ts';
 export { CharacterController, type CharacterOptions, type GroundState } from './character-controller.ts';
 export { distanceLink, hingeLink, pointLink, sliderLink } from './constraints.ts';
-export { getJolt, initializePhysics, isPhysicsInitialized, loadJolt, setDefaultPhysicsInitOptions, type JoltModule, type PhysicsInitOptions } from './jolt-backend.ts';
+export { createJoltInstance, getJolt, initializePhysics, isPhysicsInitialized, loadJolt, setDefaultPhysicsInitOptions, type JoltModule, type PhysicsInitOptions } from './jolt-backend.ts';
 export { CollisionLayer, layersInteract, makeBroadPhaseFilter, makeObjectLayerFilter, type CollisionLayerName } from './layers.ts';
 export { FIXED_DT_SECONDS, PhysicsWorld, type PhysicsWorldOptions } from './physics-world.ts';
 export { type RayHit } from './queries.ts';

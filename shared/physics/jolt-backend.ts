@@ -25,25 +25,38 @@ export function setDefaultPhysicsInitOptions(opts: PhysicsInitOptions): void {
   defaultOptions = opts;
 }
 
+type JoltFactoryFn = (moduleArgs: Record<string, unknown>) => Promise<unknown>;
+
+function chooseOptions(opts?: PhysicsInitOptions): PhysicsInitOptions {
+  const chosen = opts && (opts.wasmBinary || opts.wasmUrl) ? opts : (defaultOptions ?? {});
+  if (!chosen.wasmBinary && !chosen.wasmUrl) {
+    throw new Error(
+      'loadJolt: no wasmBinary or wasmUrl given. In Node import server/physics-node.ts (it registers the ' +
+        "package's .wasm); in the browser pass { wasmUrl } pointing at jolt-physics.wasm.wasm.",
+    );
+  }
+  return chosen;
+}
+
+async function joltFactory(): Promise<JoltFactoryFn> {
+  const { default: factory } = await import('jolt-physics/wasm');
+  return factory as unknown as JoltFactoryFn;
+}
+
 /** Loads Jolt once; later calls (with any options) return the same module. */
 export function loadJolt(opts?: PhysicsInitOptions): Promise<JoltModule> {
   if (!loadPromise) {
-    const chosen = opts && (opts.wasmBinary || opts.wasmUrl) ? opts : (defaultOptions ?? {});
     loadPromise = (async () => {
-      const { default: factory } = await import('jolt-physics/wasm');
+      const chosen = chooseOptions(opts);
+      const factory = await joltFactory();
       const moduleArgs: { locateFile?: (path: string) => string; wasmBinary?: ArrayBuffer | Uint8Array } = {};
       if (chosen.wasmBinary) {
         moduleArgs.wasmBinary = chosen.wasmBinary;
-      } else if (chosen.wasmUrl) {
-        const url = chosen.wasmUrl;
-        moduleArgs.locateFile = () => url;
       } else {
-        throw new Error(
-          'loadJolt: no wasmBinary or wasmUrl given. In Node import server/physics-node.ts (it registers the ' +
-            "package's .wasm); in the browser pass { wasmUrl } pointing at jolt-physics.wasm.wasm.",
-        );
+        const url = chosen.wasmUrl!;
+        moduleArgs.locateFile = () => url;
       }
-      const module = (await factory(moduleArgs as never)) as JoltModule;
+      const module = (await factory(moduleArgs)) as JoltModule;
       loaded = module;
       return module;
     })();
@@ -52,6 +65,42 @@ export function loadJolt(opts?: PhysicsInitOptions): Promise<JoltModule> {
     });
   }
   return loadPromise;
+}
+
+let compiled: { key: PhysicsInitOptions['wasmBinary'] | string; module: Promise<WebAssembly.Module> } | null = null;
+
+function compiledWasm(chosen: PhysicsInitOptions): Promise<WebAssembly.Module> {
+  const key = chosen.wasmBinary ?? chosen.wasmUrl!;
+  if (!compiled || compiled.key !== key) {
+    const module = chosen.wasmBinary
+      ? WebAssembly.compile(chosen.wasmBinary as BufferSource)
+      : fetch(chosen.wasmUrl!).then((r) => {
+          if (!r.ok) throw new Error(`createJoltInstance: fetching ${chosen.wasmUrl} failed: HTTP ${r.status}`);
+          return r.arrayBuffer();
+        }).then((bytes) => WebAssembly.compile(bytes));
+    compiled = { key, module };
+    module.catch(() => {
+      if (compiled?.module === module) compiled = null;
+    });
+  }
+  return compiled.module;
+}
+
+/**
+ * Instantiates a NEW, independent Jolt module with its own fixed 128 MB heap (the .wasm is compiled once per
+ * process and reused). Worlds built on it share nothing with other modules: one room running out of memory or
+ * aborting cannot touch another, and a world's heap history depends only on its own session (replays match).
+ */
+export async function createJoltInstance(opts?: PhysicsInitOptions): Promise<JoltModule> {
+  const chosen = chooseOptions(opts);
+  const [factory, wasm] = await Promise.all([joltFactory(), compiledWasm(chosen)]);
+  const instantiateWasm = (imports: WebAssembly.Imports, receive: (instance: WebAssembly.Instance) => void): Record<string, never> => {
+    WebAssembly.instantiate(wasm, imports).then(receive, (err: unknown) => {
+      throw err;
+    });
+    return {};
+  };
+  return (await factory({ instantiateWasm })) as JoltModule;
 }
 
 /** Awaits the module; call once at start-up (PhysicsWorld.create does it for you). */

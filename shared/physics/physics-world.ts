@@ -1,7 +1,7 @@
 // PhysicsWorld: one Jolt PhysicsSystem, its body registry with stable ids, the factories, stepping, sensors and
 // limits. Owns every Jolt object it creates; callers only ever see plain copies and BodyHandles.
 import { BodyHandle, type BodyRole, type JoltBody } from './body-handle.ts';
-import { loadJolt, type JoltModule } from './jolt-backend.ts';
+import { createJoltInstance, loadJolt, type JoltModule } from './jolt-backend.ts';
 import { createLayerFilters, type LayerFilters } from './layers.ts';
 import { flattenPoints, makeCreationSettings, resolveLayerMask, resolveMotion, validateBodyOptions } from './body-options.ts';
 import { BodyTable } from './body-table.ts';
@@ -86,7 +86,7 @@ export class PhysicsWorld {
     const limits = resolveWorldLimits(opts);
     const gravity = opts.gravity ?? { x: 0, y: -9.81, z: 0 };
     checkVec3(gravity, 'PhysicsWorld.create', 'gravity');
-    const J = await loadJolt(opts);
+    const J = opts.jolt ?? (opts.isolatedModule ? await createJoltInstance(opts) : await loadJolt(opts));
     ensureRoomForWorld(J.JoltInterface.prototype.sGetFreeMemory(), limits);
     return new PhysicsWorld(J, limits, gravity);
   }

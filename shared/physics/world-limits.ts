@@ -16,6 +16,13 @@ export interface PhysicsWorldOptions extends PhysicsInitOptions {
   minFreeHeapBytes?: number;
   /** Gravity (m/s²); default (0, -9.81, 0). */
   gravity?: Vec3Like;
+  /**
+   * Build the world on its own Jolt module instance (its own 128 MB heap; see createJoltInstance) instead of the
+   * process-wide one. The server gives every room one. Default false.
+   */
+  isolatedModule?: boolean;
+  /** Build the world on this already loaded module (wins over isolatedModule). */
+  jolt?: import('./jolt-backend.ts').JoltModule;
 }
 
 /** The resolved, validated limits of one world. */

@@ -84,11 +84,24 @@ describe('RoomManager', () => {
 
 describe('createRoomFactory', () => {
   it('refuses a new world with a clear Error when the shared WASM heap could not hold it', async () => {
-    const factory = createRoomFactory({ scenarios: scenarioList([emptyScenario]), logger: silentLogger(), minFreeHeapBytesForRoom: 200 * 1024 * 1024 });
+    const factory = createRoomFactory({ scenarios: scenarioList([emptyScenario]), logger: silentLogger(), isolateRooms: false, minFreeHeapBytesForRoom: 200 * 1024 * 1024 });
     const first = await factory.createSimulation('test-empty', {}, 1); // the first world is always allowed
     await expect(factory.createSimulation('test-empty', {}, 1)).rejects.toThrow(/not enough physics memory for another room: [\d.]+ MiB free/);
     expect(factory.liveSimulations()).toBe(1);
     first.sim.destroy();
     expect(factory.liveSimulations()).toBe(0);
+  });
+
+  it('gives every room its own Jolt module, so rooms do not share a heap and build identical worlds', async () => {
+    const factory = createRoomFactory({ scenarios: scenarioList([emptyScenario]), logger: silentLogger() });
+    const a = await factory.createSimulation('test-empty', {}, 1);
+    const freeBefore = a.sim.world.freeHeapBytes();
+    const b = await factory.createSimulation('test-empty', {}, 1);
+    expect(b.sim.world.jolt).not.toBe(a.sim.world.jolt);
+    expect(a.sim.world.freeHeapBytes()).toBe(freeBefore); // b's world took nothing from a's heap
+    expect(b.sim.world.freeHeapBytes()).toBe(freeBefore);
+    expect(b.sim.stateHash()).toBe(a.sim.stateHash());
+    a.sim.destroy();
+    b.sim.destroy();
   });
 });

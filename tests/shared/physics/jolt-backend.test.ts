@@ -3,7 +3,7 @@
 import { readFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { describe, expect, it } from 'vitest';
-import { getJolt, initializePhysics, isPhysicsInitialized, loadJolt, PhysicsWorld } from '../../../shared/physics/index.ts';
+import { createJoltInstance, getJolt, initializePhysics, isPhysicsInitialized, loadJolt, PhysicsWorld } from '../../../shared/physics/index.ts';
 
 const wasmPath = createRequire(import.meta.url).resolve('jolt-physics/jolt-physics.wasm.wasm');
 
@@ -28,5 +28,33 @@ describe('jolt-backend', () => {
     const w = await PhysicsWorld.create();
     expect(w.jolt).toBe(J);
     w.destroy();
+  });
+
+  it('creates independent module instances with their own heaps that simulate identically', async () => {
+    const wasmBinary = readFileSync(wasmPath);
+    const shared = await loadJolt({ wasmBinary });
+    const a = await createJoltInstance({ wasmBinary });
+    const b = await createJoltInstance({ wasmBinary });
+    expect(a).not.toBe(shared);
+    expect(a).not.toBe(b);
+    expect(a.HEAPU8.buffer).not.toBe(b.HEAPU8.buffer);
+    const drop = async (opts: Parameters<typeof PhysicsWorld.create>[0]): Promise<Float32Array> => {
+      const world = await PhysicsWorld.create(opts);
+      world.addBox({ x: 10, y: 0.5, z: 10 }, { x: 0, y: -0.5, z: 0 }, null, { motion: 'static' });
+      for (let i = 0; i < 20; i++) world.addBox({ x: 0.3, y: 0.3, z: 0.3 }, { x: (i % 4) * 0.4, y: 1 + i * 0.7, z: 0 });
+      for (let t = 0; t < 120; t++) world.stepFixed();
+      const states = world.readBodyStates().states.slice();
+      world.destroy();
+      return states;
+    };
+    const onShared = await drop({ wasmBinary });
+    const onA = await drop({ jolt: a });
+    const isolated = await drop({ wasmBinary, isolatedModule: true });
+    expect(new Uint32Array(onA.buffer)).toEqual(new Uint32Array(onShared.buffer));
+    expect(new Uint32Array(isolated.buffer)).toEqual(new Uint32Array(onShared.buffer));
+    const freeA = a.JoltInterface.prototype.sGetFreeMemory();
+    const world = await PhysicsWorld.create({ jolt: b });
+    expect(a.JoltInterface.prototype.sGetFreeMemory()).toBe(freeA); // a world on b takes nothing from a's heap
+    world.destroy();
   });
 });
