@@ -114,7 +114,7 @@ export class GameLoop {
     const mine = f.view?.characters.find((c) => c.playerId === this.welcome.playerId) ?? null;
     let camera: CameraView;
     if (mine && !this.orbitOnly) {
-      camera = this.follow.view([mine.position.x, mine.position.y, mine.position.z], this.input.yawRadians, this.input.pitchRadians, dt);
+      camera = this.follow.view([mine.position.x, mine.position.y, mine.position.z], this.input.yawRadians, this.input.pitchRadians, dt, this.world.occluders);
       s.following = true;
     } else {
       if (s.following) this.follow.reset();

@@ -3,6 +3,7 @@
 import type { SnapshotView } from '../../shared/protocol/snapshot-frame.ts';
 import type { BodyDescriptor, SimEvent } from '../../shared/sim/types.ts';
 import type { BodyStyle } from '../render/instance-store.ts';
+import { BoxOccluders } from '../render/occluders.ts';
 import type { Renderer } from '../render/renderer.ts';
 import { InstanceFlag } from '../render/shaders.ts';
 
@@ -35,6 +36,8 @@ export class WorldView {
   private staticCount = 0;
   /** Bodies in views with no descriptor (a protocol problem worth surfacing). */
   undescribed = 0;
+  /** Static solid boxes, for the follow camera to stay out of walls. */
+  readonly occluders = new BoxOccluders();
 
   constructor(renderer: RenderTarget, log: (line: string) => void) {
     this.renderer = renderer;
@@ -135,6 +138,7 @@ export class WorldView {
       console.warn(`not drawing body ${d.id}: ${(err as Error).message}`);
     }
     this.known.set(d.id, { descriptor: d, drawn });
+    if (d.motion === 'static' && !hidden && d.shape.kind === 'box') this.occluders.set(d.id, d.position, d.rotation, d.shape.halfExtents);
     if (hidden && d.motion === 'static' && !this.occupants.has(d.id)) this.occupants.set(d.id, new Set());
     return drawn;
   }
@@ -144,6 +148,7 @@ export class WorldView {
     if (!k) return;
     if (k.drawn) this.renderer.removeBody(id);
     this.known.delete(id);
+    this.occluders.delete(id);
     this.visible.delete(id);
   }
 

@@ -2,6 +2,7 @@
 // Both produce a CameraView; they hold only view state (angles, distances), never game state.
 import { forwardFromYaw } from '../../shared/sim/controls.ts';
 import type { Vec3 } from './mat4.ts';
+import type { BoxOccluders } from './occluders.ts';
 import type { CameraView } from './renderer.ts';
 
 const FOV_Y_RADIANS = (60 * Math.PI) / 180;
@@ -12,12 +13,16 @@ const FAR_METRES = 600;
 export class FollowCamera {
   distanceMetres = 5.5;
   heightMetres = 1.6;
+  /** Sideways offset to the right of the character (over the shoulder), so it does not hide the crosshair. */
+  shoulderMetres = 0.6;
+  /** How far in front of a wall the camera stops when the wall is between it and the character. */
+  wallMarginMetres = 0.25;
   /** How fast the camera catches up with its target (1/s); higher = stiffer. */
   stiffnessPerSecond = 14;
   private smoothed: Vec3 | null = null;
 
-  /** The view for a character whose feet are at `feet`, looking at yaw/pitch (radians). */
-  view(feet: Vec3, yawRadians: number, pitchRadians: number, dtSeconds: number): CameraView {
+  /** The view for a character whose feet are at `feet`, looking at yaw/pitch (radians); walls pull the camera in. */
+  view(feet: Vec3, yawRadians: number, pitchRadians: number, dtSeconds: number, occluders?: BoxOccluders): CameraView {
     const target: Vec3 = [feet[0], feet[1] + this.heightMetres, feet[2]];
     if (!this.smoothed || !Number.isFinite(dtSeconds)) this.smoothed = target;
     else {
@@ -30,8 +35,26 @@ export class FollowCamera {
     const f = forwardFromYaw(yawRadians);
     const cosP = Math.cos(pitch);
     const dir: Vec3 = [f.x * cosP, Math.sin(pitch), f.z * cosP];
-    const eye: Vec3 = [t[0] - dir[0] * this.distanceMetres, Math.max(t[1] - dir[1] * this.distanceMetres, t[1] - 1.2), t[2] - dir[2] * this.distanceMetres];
-    const look: Vec3 = [t[0] + dir[0] * 4, t[1] + dir[1] * 4, t[2] + dir[2] * 4];
+    // Right of the view direction (yaw 0 faces −Z, so right is +X): (−f.z, 0, f.x).
+    let shoulder = this.shoulderMetres;
+    if (occluders && occluders.size > 0 && shoulder > 0) {
+      // Standing beside a wall: keep the shoulder offset out of it.
+      const side = occluders.castRay(t, [t[0] - f.z * shoulder, t[1], t[2] + f.x * shoulder]);
+      if (side < 1) shoulder *= Math.max(0, side - this.wallMarginMetres / shoulder);
+    }
+    const pivot: Vec3 = [t[0] - f.z * shoulder, t[1], t[2] + f.x * shoulder];
+    let eye: Vec3 = [pivot[0] - dir[0] * this.distanceMetres, Math.max(pivot[1] - dir[1] * this.distanceMetres, pivot[1] - 1.2), pivot[2] - dir[2] * this.distanceMetres];
+    if (occluders && occluders.size > 0) {
+      // Keep both the head and the middle of the body in sight (a low wall may hide one and not the other).
+      const body: Vec3 = [pivot[0], pivot[1] - this.heightMetres / 2, pivot[2]];
+      const hit = Math.min(occluders.castRay(pivot, eye), occluders.castRay(body, [eye[0], eye[1] - this.heightMetres / 2, eye[2]]));
+      if (hit < 1) {
+        const len = Math.hypot(eye[0] - pivot[0], eye[1] - pivot[1], eye[2] - pivot[2]);
+        const k = Math.max(0, hit - this.wallMarginMetres / len);
+        eye = [pivot[0] + (eye[0] - pivot[0]) * k, pivot[1] + (eye[1] - pivot[1]) * k, pivot[2] + (eye[2] - pivot[2]) * k];
+      }
+    }
+    const look: Vec3 = [pivot[0] + dir[0] * 4, pivot[1] + dir[1] * 4, pivot[2] + dir[2] * 4];
     return { eye, target: look, fovYRadians: FOV_Y_RADIANS, nearMetres: NEAR_METRES, farMetres: FAR_METRES };
   }
 

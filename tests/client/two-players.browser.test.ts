@@ -45,10 +45,13 @@ describeBrowser('two players', () => {
     const other = await launchBrowser();
     const a = await browser.newPage();
     const b = await other.newPage();
+    // The watcher joins first (the leftmost spawn slot), so the walker spawns to its right: in view over the
+    // watcher's right shoulder, not behind the watcher's own capsule.
+    await b.page.goto(new URL('/?room=duo&name=watcher&hud=0', server.url).href);
+    await waitForHook(b.page, "t.connected && t.characters.some((c) => c.playerId === t.playerId)");
     await a.page.goto(new URL('/?room=duo&name=walker&hud=0', server.url).href);
     await waitForHook(a.page, "t.connected && t.characters.some((c) => c.playerId === t.playerId)");
-    await b.page.goto(new URL('/?room=duo&name=watcher&hud=0', server.url).href);
-    await waitForHook(b.page, 't.connected && t.characters.length >= 2 && t.framesRendered >= 3');
+    await waitForHook(b.page, 't.characters.length >= 2 && t.framesRendered >= 3');
     const walkerId = (await readHook<TaosState>(a.page)).playerId!;
     const before = await readHook<TaosState>(b.page);
     const startOnB = before.characters.find((c) => c.playerId === walkerId)!.position;
@@ -83,9 +86,11 @@ describeBrowser('two players', () => {
     const cameraAfter = after.camera as HookCamera;
     expect(distance3(cameraAfter.eye, cameraBefore.eye)).toBeLessThan(0.1);
     const pixelsAfter = await canvasPixels(b.page, 'canvas#scene', 320);
-    // Where the walker stands now (it started behind the walkway's wall, out of sight), its capsule appeared.
+    // Where the walker stands now (it started beside the watcher, out of its view), its capsule appeared.
     const to = projectToCanvas(cameraAfter, [endOnB[0], endOnB[1] + CAPSULE_MID_METRES, endOnB[2]]);
     expect(to).not.toBeNull();
+    expect(to!.x).toBeGreaterThan(0.05);
+    expect(to!.x).toBeLessThan(0.95);
     expect(regionChanged(pixelsBefore, pixelsAfter, to!.x, to!.y, 1)).toBeGreaterThan(0.5);
     // A control spot of sky, away from both characters, did not change.
     expect(regionChanged(pixelsBefore, pixelsAfter, 0.9, 0.1, 2)).toBe(0);
