@@ -46,6 +46,26 @@ describeBrowser('gallery page', () => {
     const y0 = hook.bodies.map((b) => b.position[1]);
     const y1 = later.bodies.map((b) => b.position[1]);
     expect(y1).not.toEqual(y0);
+    // The hook is read-only: assigning it throws, and what it returns is frozen.
+    const tamper = await page.evaluate(() => {
+      const g = globalThis as unknown as { __taos: { framesRendered: number } };
+      let assign = 'assigned';
+      try {
+        g.__taos = { framesRendered: -1 };
+      } catch (e) {
+        assign = (e as Error).message;
+      }
+      const snapshot = g.__taos;
+      try {
+        snapshot.framesRendered = -1;
+      } catch {
+        // strict-mode write to a frozen object
+      }
+      return { assign, frozen: Object.isFrozen(snapshot), frames: g.__taos.framesRendered };
+    });
+    expect(tamper.assign).toBe('window.__taos is read-only');
+    expect(tamper.frozen).toBe(true);
+    expect(tamper.frames).toBeGreaterThan(0);
     expect(errors).toEqual([]);
     await page.close();
   });
