@@ -16,6 +16,8 @@ interface Known {
   descriptor: BodyDescriptor;
   /** Registered with the renderer (false when its shape was refused). */
   drawn: boolean;
+  /** Drawn only while snapshots carry it: moving bodies and statics streamed in after the scene was built. */
+  presenceDriven: boolean;
 }
 
 /** The part of the Renderer the world view drives (a fake in unit tests). */
@@ -52,15 +54,16 @@ export class WorldView {
     this.occupants.clear();
     this.visible.clear();
     this.staticCount = 0;
-    for (const d of staticBodies) if (this.register(d)) this.staticCount++;
-    for (const d of dynamicBodies) this.register(d);
+    for (const d of staticBodies) if (this.register(d, false)) this.staticCount++;
+    // The welcome's other bodies, streamed statics among them, are drawn once a snapshot places them.
+    for (const d of dynamicBodies) this.register(d, true);
   }
 
   /** Descriptors that came with the snapshot of `tick` (spawns; possibly repeats or a reused id's new body). */
   addDescriptors(tick: number, descriptors: readonly BodyDescriptor[]): void {
     for (const d of descriptors) {
       const k = this.known.get(d.id);
-      if (!k) this.register(d);
+      if (!k) this.register(d, true);
       else if (!sameLook(k.descriptor, d)) {
         this.pendingDescriptors.push({ tick, descriptor: d });
         this.pendingDescriptors.sort((a, b) => a.tick - b.tick);
@@ -80,7 +83,7 @@ export class WorldView {
     while (this.pendingDescriptors.length > 0 && this.pendingDescriptors[0].tick <= renderTick) {
       const { descriptor } = this.pendingDescriptors.shift()!;
       this.forget(descriptor.id);
-      this.register(descriptor);
+      this.register(descriptor, true);
     }
     while (this.pendingEvents.length > 0 && this.pendingEvents[0].tick <= renderTick) this.applyEvent(this.pendingEvents.shift()!);
     if (!view) return;
@@ -93,10 +96,13 @@ export class WorldView {
         this.undescribed++;
         continue;
       }
-      if (!k.drawn || k.descriptor.motion === 'static') continue;
-      const p = i * 3;
-      const q = i * 4;
-      store.setPose(id, view.positions[p], view.positions[p + 1], view.positions[p + 2], view.rotations[q], view.rotations[q + 1], view.rotations[q + 2], view.rotations[q + 3]);
+      if (!k.drawn || !k.presenceDriven) continue;
+      // A streamed static keeps its descriptor pose (uploaded once); moving bodies take the interpolated one.
+      if (k.descriptor.motion !== 'static') {
+        const p = i * 3;
+        const q = i * 4;
+        store.setPose(id, view.positions[p], view.positions[p + 1], view.positions[p + 2], view.rotations[q], view.rotations[q + 1], view.rotations[q + 2], view.rotations[q + 3]);
+      }
       seen.add(id);
       if (!this.visible.has(id)) store.setStyle(id, { visible: true });
     }
@@ -111,7 +117,7 @@ export class WorldView {
       .map(([sensorId, set]) => ({ sensorId, occupied: set.size > 0, lit: (this.renderer.store.style(sensorId)?.emissive ?? 0) > 0 }));
   }
 
-  /** Bodies drawn this frame (static + visible moving ones). */
+  /** Bodies drawn this frame (the built scene + bodies the current view carries). */
   get drawnCount(): number {
     return this.staticCount + this.visible.size;
   }
@@ -121,14 +127,14 @@ export class WorldView {
     return this.known.get(id)?.descriptor;
   }
 
-  private register(d: BodyDescriptor): boolean {
+  private register(d: BodyDescriptor, presenceDriven: boolean): boolean {
     const hidden = d.hidden;
     const style: Partial<BodyStyle> = {
       color: hidden ? shade(d.color, IDLE_SENSOR_SHADE) : d.color,
       // Hidden bodies are trigger volumes: draw a box's edges, or any other shape hatched, so players see the zone.
       flags: hidden ? (d.shape.kind === 'box' ? InstanceFlag.Outline : InstanceFlag.Hatch) : d.motion === 'static' ? InstanceFlag.Grid : 0,
-      // Moving bodies stay hidden until a snapshot places them.
-      visible: d.motion === 'static',
+      // Bodies that snapshots carry stay hidden until one places them (a spawn appears at its tick).
+      visible: !presenceDriven,
     };
     let drawn = true;
     try {
@@ -137,7 +143,7 @@ export class WorldView {
       drawn = false;
       console.warn(`not drawing body ${d.id}: ${(err as Error).message}`);
     }
-    this.known.set(d.id, { descriptor: d, drawn });
+    this.known.set(d.id, { descriptor: d, drawn, presenceDriven });
     if (d.motion === 'static' && !hidden && d.shape.kind === 'box') this.occluders.set(d.id, d.position, d.rotation, d.shape.halfExtents);
     if (hidden && d.motion === 'static' && !this.occupants.has(d.id)) this.occupants.set(d.id, new Set());
     return drawn;

@@ -114,6 +114,24 @@ describe('WorldView', () => {
     expect(r.store.style(5)?.visible).toBe(true);
   });
 
+  it('shows a static body streamed in after the scene was built only while snapshots carry it', () => {
+    const r = fakeRenderer();
+    const w = new WorldView(r, () => undefined);
+    w.reset([ground], []);
+    const tile: BodyDescriptor = { id: 12, shape: { kind: 'box', halfExtents: { x: 4, y: 0.5, z: 4 } }, color: [0.4, 0.5, 0.3], motion: 'static', hidden: false, position: { x: 20, y: -0.5, z: 0 }, rotation: Q };
+    w.addDescriptors(100, [tile]);
+    expect(r.store.style(12)).toMatchObject({ visible: false, flags: InstanceFlag.Grid });
+    w.apply(view(99, []), 99);
+    expect(r.store.style(12)?.visible).toBe(false);
+    w.apply(view(100, [[12, 20, -0.5, 0]]), 100);
+    expect(r.store.style(12)?.visible).toBe(true);
+    expect(r.store.pose(12)?.slice(0, 3)).toEqual([20, -0.5, 0]);
+    expect(w.drawnCount).toBe(2);
+    w.queueEvents([{ type: 'bodyRemoved', tick: 150, bodyId: 12 }]);
+    w.apply(view(150, []), 150);
+    expect(r.store.has(12)).toBe(false);
+  });
+
   it('skips a body whose shape cannot be drawn instead of failing the whole world', () => {
     const r = fakeRenderer();
     const warn = vi.spyOn(console, 'warn').mockImplementation(() => undefined);
