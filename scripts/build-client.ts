@@ -69,8 +69,8 @@ export async function buildClient(opts: BuildClientOptions = {}): Promise<BuildC
   return { outDir, files: [...outputs.keys()].sort(), changed: changed.sort(), sizeBytes, durationMs: performance.now() - started };
 }
 
-/** The client must never pull in the physics engine: the browser only draws what the server says. */
-function assertNoJolt(meta: Metafile): void {
+/** Throws, naming the importer, if a bundle pulled in the physics engine: the browser only draws what the server says. */
+export function assertNoJolt(meta: Metafile): void {
   for (const [input, info] of Object.entries(meta.inputs)) {
     if (/(^|\/)jolt-physics\//.test(input) || /(^|\/)shared\/physics\/(jolt-backend|physics-world)\.ts$/.test(input)) {
       const importers = Object.entries(meta.inputs)
