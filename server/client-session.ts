@@ -45,10 +45,14 @@ export interface SessionLimits {
   maxBufferedBytes: number;
 }
 
-/** Defaults: room for 60 inputs + 60 acks + pings per second with slack, and a short leash on garbage. */
+/**
+ * Defaults: room for 60 inputs + 60 acks + pings per second with slack, and a short leash on garbage. The bursts
+ * hold ~10 s of a well-behaved client's traffic: after a network stall (or a server pause) its on-time messages
+ * arrive all at once, and that must not read as a flood; the sustained rates still cap a flooder.
+ */
 export const DEFAULT_SESSION_LIMITS: Readonly<SessionLimits> = Object.freeze({
-  messages: { perSecond: 300, burst: 300 },
-  inputs: { perSecond: 150, burst: 150 },
+  messages: { perSecond: 300, burst: 1200 },
+  inputs: { perSecond: 150, burst: 600 },
   badMessages: { perSecond: 0.5, burst: 10 },
   maxMessageBytes: MAX_CLIENT_MESSAGE_BYTES,
   helloTimeoutMs: 10_000,
