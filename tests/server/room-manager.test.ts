@@ -1,10 +1,11 @@
 // Tests for server/room-manager.ts and server/room-factory.ts through the harness: rooms on demand (by scenario name
-// or API), joining by id, the rooms limit, closing empty rooms after the grace period, and the heap guard.
+// or API), joining by id, the rooms limit, closing empty rooms after the grace period, the heap guard and per-room Jolt modules.
 import { afterEach, describe, expect, it } from 'vitest';
 import { silentLogger } from '../../server/logger.ts';
 import { createRoomFactory } from '../../server/room-factory.ts';
 import { RoomError } from '../../server/room.ts';
 import { ByeReason, ErrorCode } from '../../shared/protocol/index.ts';
+import { Simulation } from '../../shared/sim/simulation.ts';
 import { scenarioList, startHarness, type Harness } from './harness.ts';
 import { emptyScenario, stripScenario } from './test-scenarios.ts';
 
@@ -94,14 +95,16 @@ describe('createRoomFactory', () => {
 
   it('gives every room its own Jolt module, so rooms do not share a heap and build identical worlds', async () => {
     const factory = createRoomFactory({ scenarios: scenarioList([emptyScenario]), logger: silentLogger() });
-    const a = await factory.createSimulation('test-empty', {}, 1);
-    const freeBefore = a.sim.world.freeHeapBytes();
-    const b = await factory.createSimulation('test-empty', {}, 1);
-    expect(b.sim.world.jolt).not.toBe(a.sim.world.jolt);
-    expect(a.sim.world.freeHeapBytes()).toBe(freeBefore); // b's world took nothing from a's heap
-    expect(b.sim.world.freeHeapBytes()).toBe(freeBefore);
-    expect(b.sim.stateHash()).toBe(a.sim.stateHash());
-    a.sim.destroy();
-    b.sim.destroy();
+    const builtA = await factory.createSimulation('test-empty', {}, 1);
+    const builtB = await factory.createSimulation('test-empty', {}, 1);
+    if (!(builtA.sim instanceof Simulation) || !(builtB.sim instanceof Simulation)) throw new Error('the factory builds Simulations');
+    const a = builtA.sim;
+    const b = builtB.sim;
+    const freeBefore = a.world.freeHeapBytes();
+    expect(b.world.jolt).not.toBe(a.world.jolt);
+    expect(b.world.freeHeapBytes()).toBe(freeBefore); // the same fresh heap state, and b took nothing from a's heap
+    expect(b.stateHash()).toBe(a.stateHash());
+    a.destroy();
+    b.destroy();
   });
 });
