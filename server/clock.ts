@@ -1,18 +1,10 @@
 // Time sources for the server: a monotonic clock with timers (system) and a manual one tests advance by hand.
 // Everything time-driven in server/ (tick loop, grace periods, rate limits, pings) reads time only through a Clock.
 
-/** Opaque handle of a scheduled timer. */
-export type TimerHandle = { readonly id: number };
+import type { Clock, TimerHandle } from '../client/net/clock.ts';
 
-/** A monotonic millisecond clock that can also schedule callbacks. */
-export interface Clock {
-  /** Monotonic time in milliseconds (arbitrary origin; never goes back). */
-  nowMs(): number;
-  /** Runs `fn` once after `delayMs` (≥ 0). */
-  setTimer(delayMs: number, fn: () => void): TimerHandle;
-  /** Cancels a timer (no-op when it already ran or was cleared). */
-  clearTimer(handle: TimerHandle): void;
-}
+// One Clock contract for both ends: the client library defines it (browser + Node), the server implements it.
+export type { Clock, TimerHandle };
 
 /** The real clock: `performance.now()` and Node timers (unref'd so they never keep a process alive on their own). */
 export class SystemClock implements Clock {
