@@ -43,7 +43,11 @@ interface Step {
   why: string;
   ticks: number;
   tickP50Ms: number;
+  tickP90Ms: number;
   tickP99Ms: number;
+  tickMaxMs: number;
+  /** Ticks over the 16.7 ms budget in the window. */
+  ticksOverBudget: number;
   ticksPerSecond: number;
   snapshotsSkippedShare: number;
   slowdownTicks: number;
@@ -77,7 +81,10 @@ async function step(server: Child, wsUrl: string, clients: number, settleMs: num
       why: reasons.join('; '),
       ticks,
       tickP50Ms: round(ticks > 0 ? quantile(s.tickMs, 0.5) : NaN, 3),
+      tickP90Ms: round(ticks > 0 ? quantile(s.tickMs, 0.9) : NaN, 3),
       tickP99Ms: round(p99, 3),
+      tickMaxMs: round(ticks > 0 ? Math.max(...s.tickMs) : NaN, 3),
+      ticksOverBudget: s.tickMs.filter((ms) => ms > TICK_BUDGET_MS).length,
       ticksPerSecond: round(ticks / s.seconds, 1),
       snapshotsSkippedShare: round(skippedShare, 4),
       slowdownTicks: s.ticksSkipped,

@@ -31,13 +31,15 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
     const room = server.game.rooms.get('default');
     if (!room) throw new Error('input latency: the server has no default room');
     // First arrival of each (player, tick) input: the room's tick counter then (ticks applied so far) and the time.
-    const arrivals = new Map<string, { ticksApplied: number; atMs: number }>();
+    // Messages repeat the last few inputs, so later copies of a tick (even after it was applied) are not arrivals.
+    const arrivals = new Map<number, Map<number, { ticksApplied: number; atMs: number }>>();
     let late = 0;
     const offer = room.offerInput.bind(room);
     room.offerInput = (playerId: number, tick: number, command: InputCommand) => {
-      const key = `${playerId}:${tick}`;
-      if (!arrivals.has(key)) {
-        arrivals.set(key, { ticksApplied: room.sim.tick, atMs: performance.now() });
+      let byPlayer = arrivals.get(tick);
+      if (!byPlayer) arrivals.set(tick, (byPlayer = new Map()));
+      if (!byPlayer.has(playerId)) {
+        byPlayer.set(playerId, { ticksApplied: room.sim.tick, atMs: performance.now() });
         if (tick < room.sim.tick) late++;
       }
       return offer(playerId, tick, command);
@@ -46,14 +48,16 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
     const waitMs: number[] = [];
     room.onTick((record) => {
       const now = performance.now();
+      const byPlayer = arrivals.get(record.tick);
       for (const c of record.commands) {
-        const a = arrivals.get(`${c.playerId}:${record.tick}`);
-        if (!a) continue;
-        arrivals.delete(`${c.playerId}:${record.tick}`);
+        const a = byPlayer?.get(c.playerId);
         // Applied by the next tick run after arrival = 1; each tick of lead the client chose adds one.
-        waitTicks.push(record.tick - a.ticksApplied + 1);
-        waitMs.push(now - a.atMs);
+        if (a) {
+          waitTicks.push(record.tick - a.ticksApplied + 1);
+          waitMs.push(now - a.atMs);
+        }
       }
+      for (const t of arrivals.keys()) if (t < record.tick - 120) arrivals.delete(t);
     });
     opts.log(`client: ${toggles} toggles of the Use button, ${intervalMs} ms apart, ${SNAPSHOT_RATE_HZ} Hz snapshots`);
     const out = await runToEnd(startNode(CLIENT, [server.wsUrl, String(toggles), String(intervalMs)]), 60_000 + toggles * intervalMs, 'latency client');

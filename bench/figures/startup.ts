@@ -1,22 +1,21 @@
 // Start-up: process start to listening (spawn `taos-physics serve --port 0`, time until it prints its URL) for the
 // default scenario and the heaviest-to-build one, and each registered scenario's build time (Jolt already loaded).
 import '../../server/physics-node.ts';
-import { mkdtemp, rm } from 'node:fs/promises';
-import { tmpdir } from 'node:os';
-import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
 import { DEFAULT_SCENARIO, listScenarios } from '../../scenarios/index.ts';
 import { Simulation } from '../../shared/sim/simulation.ts';
-import { CLI_PATH, startNode, stopChild, waitForLine } from '../lib/child.ts';
+import { CLI_PATH, runToEnd, startNode, stopChild, waitForLine } from '../lib/child.ts';
 import type { ChartBar, FigureImpl, FigureOutput, ReportRow } from '../lib/figure.ts';
 import { median, round } from '../lib/stats.ts';
 
 const GOAL_MS = 1000;
 const URL_LINE = /serving .* at (http:\/\/\S+)/;
+const PROBE = fileURLToPath(new URL('../procs/startup-probe.ts', import.meta.url));
 
 /** Spawns `serve --port 0 --scenario NAME` and returns ms from spawn to the line with its URL. */
-async function serveOnce(scenario: string, env?: Record<string, string>): Promise<number> {
+async function serveOnce(scenario: string): Promise<number> {
   const t0 = performance.now();
-  const child = startNode(CLI_PATH, ['serve', '--port', '0', '--scenario', scenario], { env });
+  const child = startNode(CLI_PATH, ['serve', '--port', '0', '--scenario', scenario]);
   try {
     const { atMs } = await waitForLine(child, URL_LINE, 30_000);
     return atMs - t0;
@@ -31,19 +30,14 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
   const serveScenarios = [DEFAULT_SCENARIO, 'cubes-901'];
   const serveMs = new Map<string, number[]>(serveScenarios.map((s) => [s, []]));
   opts.log(`serve: ${spawns} spawns each of ${serveScenarios.join(', ')}`);
-  // Diagnostic: the same start with Node's on-disk compile cache warm (NODE_COMPILE_CACHE; the first spawn fills it),
-  // which shows how much of the start is compiling the TypeScript modules.
-  const cacheDir = await mkdtemp(join(tmpdir(), 'taos-bench-ncc-'));
-  const cachedMs: number[] = [];
-  try {
-    for (let i = 0; i < spawns; i++) {
-      for (const s of serveScenarios) serveMs.get(s)!.push(await serveOnce(s));
-      const ms = await serveOnce(DEFAULT_SCENARIO, { NODE_COMPILE_CACHE: cacheDir });
-      if (i > 0) cachedMs.push(ms);
-    }
-  } finally {
-    await rm(cacheDir, { recursive: true, force: true });
+  for (let i = 0; i < spawns; i++) for (const s of serveScenarios) serveMs.get(s)!.push(await serveOnce(s));
+  // Where the time goes: a probe process starts the server like serve does and times each stage from process start.
+  const stages: Array<{ bootMs: number; importMs: number; joltMs: number; startServerMs: number; totalMs: number }> = [];
+  for (let i = 0; i < spawns; i++) {
+    const out = await runToEnd(startNode(PROBE, [DEFAULT_SCENARIO]), 30_000, 'start-up probe');
+    stages.push(JSON.parse(out.trim().split('\n').at(-1)!).probe);
   }
+  const stage = (key: keyof (typeof stages)[number]): number => median(stages.map((s) => s[key]));
 
   // The first world in a process also loads Jolt's WASM: timed apart.
   const scenarios = listScenarios();
@@ -75,19 +69,21 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
     digits: 0,
     goal: { op: '<=' as const, value: GOAL_MS },
   }));
-  rows.push({ figure: 'start-up', measure: `same, ${DEFAULT_SCENARIO}, Node compile cache warm (diagnostic)`, value: median(cachedMs), unit: 'ms', digits: 0 });
-  rows.push({ figure: 'start-up', measure: 'Jolt WASM load (first world in a process)', value: joltLoadMs, unit: 'ms', digits: 0 });
+  rows.push({ figure: 'start-up', measure: `of which loading the server's modules (probe, median)`, value: stage('importMs'), unit: 'ms', digits: 0 });
+  rows.push({ figure: 'start-up', measure: 'of which Jolt WASM load (probe, median)', value: stage('joltMs'), unit: 'ms', digits: 0 });
   const slowest = [...buildMs.entries()].sort((a, b) => b[1] - a[1])[0];
   rows.push({ figure: 'start-up', measure: `slowest scenario build: ${slowest[0]} (Jolt loaded)`, value: slowest[1], unit: 'ms', digits: 0 });
   const bars: ChartBar[] = serveScenarios.map((s) => ({ label: `serve ${s}`, value: median(serveMs.get(s)!), series: 'ours' }));
-  bars.push({ label: `serve ${DEFAULT_SCENARIO}, compile cache warm`, value: median(cachedMs), series: 'other' });
-  bars.push({ label: 'Jolt WASM load', value: joltLoadMs, series: 'raw' });
+  bars.push({ label: 'probe: Node boot', value: stage('bootMs'), series: 'raw' });
+  bars.push({ label: "probe: server's modules", value: stage('importMs'), series: 'other' });
+  bars.push({ label: 'probe: Jolt WASM', value: stage('joltMs'), series: 'raw' });
+  bars.push({ label: 'probe: room build + listen', value: stage('startServerMs'), series: 'other' });
   for (const [name, ms] of buildMs) bars.push({ label: `build ${name}`, value: ms, series: 'other' });
   return {
     headline: { startupMs: round(defaultServe, 1) },
     detail: {
       serveMs: Object.fromEntries([...serveMs].map(([k, v]) => [k, v.map((x) => round(x, 1))])),
-      serveWithCompileCacheMs: cachedMs.map((x) => round(x, 1)),
+      probeStagesMs: { bootMs: round(stage('bootMs'), 1), importMs: round(stage('importMs'), 1), joltMs: round(stage('joltMs'), 1), startServerMs: round(stage('startServerMs'), 1), totalMs: round(stage('totalMs'), 1) },
       joltLoadMs: round(joltLoadMs, 1),
       scenarioBuildMs: Object.fromEntries([...buildMs].map(([k, v]) => [k, round(v, 1)])),
       goalMs: GOAL_MS,
@@ -96,7 +92,7 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
     charts: [{ title: 'Start-up (ms)', unit: 'ms', bars, goal: GOAL_MS }],
     notes: [
       `Serve: \`node bin/taos-physics.js serve --port 0 --scenario NAME\` spawned ${spawns}× per scenario, timed from spawn to the stdout line with its URL (Node start, module loading, Jolt load, the default room's build, listening); headline: ${DEFAULT_SCENARIO}, the default.`,
-      'Diagnostic: the default start again with NODE_COMPILE_CACHE pointing at a warm cache (Node keeps compiled, type-stripped modules on disk); the gap to the plain start is the cost of compiling ~140 TypeScript modules on every start.',
+      `Stages (procs/startup-probe.ts, ${spawns} fresh processes, medians, from process start): Node boot, importing the server's TypeScript modules (type stripping + compile), Jolt's WASM, startServer (the default room's build and listening).`,
       `Builds: Simulation.create of every registered scenario in one process after Jolt is loaded (median of ${builds}), seed 1, default parameters.`,
     ],
   };
