@@ -308,7 +308,12 @@ export class ClientSession implements RoomMember {
 
   private send(msg: ServerMessage): number {
     if (this.state === 'closed' || !this.conn.isOpen()) return 0;
-    const bytes = encodeServerMessage(msg);
+    return this.sendEncoded(encodeServerMessage(msg));
+  }
+
+  /** Sends an already framed server message (shared between clients; never mutated). */
+  private sendEncoded(bytes: Uint8Array): number {
+    if (this.state === 'closed' || !this.conn.isOpen()) return 0;
     this.conn.send(bytes);
     this.stats.bytesSent += bytes.length;
     this.ctx.metrics.bytesSent.inc(bytes.length);
@@ -340,8 +345,25 @@ export class ClientSession implements RoomMember {
       q = quantizeFrame(this.encoder.format, frame.tick, frame.bodies, frame.characters, { includeStatic: (id) => !room.isSceneStatic(id) });
       frame.cache.set('quantized', q);
     }
-    const encoded = this.encoder.encode(q, (id) => room.sim.bodyDescriptor(id) ?? undefined);
-    const size = this.send({ type: 'snapshot', bytes: encoded.bytes, descriptors: encoded.descriptors });
+    let shared = frame.cache.get('snapshotBytes') as Map<number, Uint8Array> | undefined;
+    if (!shared) {
+      shared = new Map();
+      frame.cache.set('snapshotBytes', shared);
+    }
+    const encoded = this.encoder.encode(q, (id) => room.sim.bodyDescriptor(id) ?? undefined, shared);
+    let size: number;
+    if (encoded.descriptors.length === 0) {
+      // Clients that share a baseline get the very same message: frame it once per tick and baseline.
+      const key = `snapshotMessage:${encoded.baselineTick ?? -1}`;
+      let message = frame.cache.get(key) as Uint8Array | undefined;
+      if (!message) {
+        message = encodeServerMessage({ type: 'snapshot', bytes: encoded.bytes, descriptors: [] });
+        frame.cache.set(key, message);
+      }
+      size = this.sendEncoded(message);
+    } else {
+      size = this.send({ type: 'snapshot', bytes: encoded.bytes, descriptors: encoded.descriptors });
+    }
     this.stats.snapshotsSent++;
     this.stats.snapshotBytes += size;
     m.snapshotBytes.observe(size);

@@ -155,12 +155,20 @@ export class SnapshotEncoder {
 
   /**
    * Encodes a frame for this client and remembers it as a possible baseline. `describe(id)` returns a body's
-   * descriptor; a spawned body without one throws (a server bug, not a client's doing).
+   * descriptor; a spawned body without one throws (a server bug, not a client's doing). `shared` (optional) is a
+   * cache of encoded bytes by baseline tick for THIS frame object and the same format, used by every client of a
+   * room in one tick: encoding then costs once per distinct baseline instead of once per client.
    */
-  encode(frame: QuantizedFrame, describe: (bodyId: number) => BodyDescriptor | undefined): EncodedSnapshot {
+  encode(frame: QuantizedFrame, describe: (bodyId: number) => BodyDescriptor | undefined, shared?: Map<number, Uint8Array>): EncodedSnapshot {
     const baseEntry = this.ackedTick >= 0 ? this.sent.get(this.ackedTick) : undefined;
     const baseline = baseEntry !== undefined && baseEntry.frame.tick < frame.tick ? baseEntry.frame : null;
-    const bytes = encodeSnapshot(this.format, frame, baseline);
+    // The bytes depend only on (format, frame, baseline): clients of one room that acked the same tick share them.
+    const key = baseline === null ? -1 : baseline.tick;
+    let bytes = shared?.get(key);
+    if (bytes === undefined) {
+      bytes = encodeSnapshot(this.format, frame, baseline);
+      shared?.set(key, bytes);
+    }
     // Bodies gone since the previous encode are forgotten, so a reused id gets its new descriptor.
     if (this.previousIds !== null && this.known.size > 0) forEachRemoved(this.previousIds, frame.bodyIds, (id) => this.known.delete(id));
     this.previousIds = frame.bodyIds;

@@ -39,6 +39,30 @@ describe('snapshot-stream', () => {
     expect(enc.stats).toMatchObject({ full: 2, delta: 1, acks: 1 });
   });
 
+  it('shares one encoding between clients that acked the same tick, and keeps each decode exact', () => {
+    const world = new SyntheticWorld({ seed: 3 });
+    const describe = (id: number) => world.describe(id);
+    const encoders = [new SnapshotEncoder(format), new SnapshotEncoder(format), new SnapshotEncoder(format)];
+    const decoders = encoders.map(() => new SnapshotDecoder(format));
+    const sendAll = (): EncodedSnapshot[] => {
+      world.step();
+      const frame = frameOf(world);
+      const shared = new Map<number, Uint8Array>();
+      const out = encoders.map((enc) => enc.encode(frame, describe, shared));
+      out.forEach((s, i) => expect(framesEqual(decoders[i].decode(s.bytes).frame, frame)).toBe(true));
+      return out;
+    };
+    const first = sendAll();
+    expect(first[1].bytes).toBe(first[0].bytes); // all full: encoded once
+    encoders[0].acknowledge(1);
+    encoders[1].acknowledge(1);
+    const second = sendAll();
+    expect(second[1].bytes).toBe(second[0].bytes); // same baseline (tick 1): the same bytes
+    expect(second[2].bytes).not.toBe(second[0].bytes); // no ack yet: a full snapshot of its own
+    expect(second[2].baselineTick).toBeNull();
+    expect(second[0].baselineTick).toBe(1);
+  });
+
   it('holds back repeated full snapshots while the first one awaits its ack', () => {
     const world = new SyntheticWorld({ seed: 6 });
     const enc = new SnapshotEncoder(format, { fullRetryTicks: 10 });
