@@ -24,7 +24,7 @@ const ROWS: ReadonlyArray<[keyof HudValues, string, (v: HudValues) => string]> =
   ['playerId', 'player', (v) => (v.playerId === null ? 'spectating' : `#${v.playerId}`)],
   ['serverTick', 'server tick', (v) => String(v.serverTick)],
   ['rttMs', 'RTT', (v) => (v.rttMs === null ? '…' : `${v.rttMs.toFixed(0)} ms`)],
-  ['inputLeadTicks', 'input lead', (v) => (v.inputLeadTicks === null ? '…' : `${v.inputLeadTicks} ticks`)],
+  ['inputLeadTicks', 'input lead', (v) => (v.inputLeadTicks === null ? '…' : `${v.inputLeadTicks.toFixed(2)} ticks`)],
   ['snapshotsPerSecond', 'snapshots', (v) => `${v.snapshotsPerSecond.toFixed(0)} /s`],
   ['kbpsIn', 'in', (v) => `${v.kbpsIn.toFixed(1)} kbps`],
   ['interpolationDelayMs', 'interp delay', (v) => `${v.interpolationDelayMs.toFixed(0)} ms (${v.bufferDepth} ahead)`],

@@ -92,7 +92,7 @@ export class InputSender {
 /** Options of InputLead. */
 export interface InputLeadOptions {
   tickRateHz: number;
-  /** Fewest ticks of lead. Default 1. */
+  /** Fewest ticks of lead (a fraction of a tick is fine). Default 0. */
   minLeadTicks?: number;
   /** Most ticks of lead. Default 12. */
   maxLeadTicks?: number;
@@ -102,7 +102,12 @@ export interface InputLeadOptions {
   decayMs?: number;
 }
 
-/** The adaptive input lead: ceil((2·jitter + margin) / tick) + boost, clamped; boost rises when inputs come late. */
+/**
+ * The adaptive input lead, in (fractional) ticks: (2·jitter + margin) / tick + boost, clamped; boost rises by a whole
+ * tick each time the server reports late inputs. The sender targets floor(estimated server tick at arrival + lead):
+ * the earliest tick that still leaves the margin, so on a calm link an input is applied by the first tick after it
+ * arrives.
+ */
 export class InputLead {
   private readonly tickMs: number;
   private readonly minLead: number;
@@ -116,7 +121,7 @@ export class InputLead {
 
   constructor(opts: InputLeadOptions) {
     this.tickMs = 1000 / opts.tickRateHz;
-    this.minLead = opts.minLeadTicks ?? 1;
+    this.minLead = opts.minLeadTicks ?? 0;
     this.maxLead = opts.maxLeadTicks ?? 12;
     this.marginMs = opts.marginMs ?? 4;
     this.decayMs = opts.decayMs ?? 8000;
@@ -124,7 +129,7 @@ export class InputLead {
     this.lead = this.minLead;
   }
 
-  /** Current lead in ticks. */
+  /** Current lead in (fractional) ticks. */
   get leadTicks(): number {
     return this.lead;
   }
@@ -147,7 +152,7 @@ export class InputLead {
       this.boost--;
       this.lastChangeMs = nowMs;
     }
-    const base = Math.ceil((2 * Math.max(0, jitterMs) + this.marginMs) / this.tickMs);
+    const base = (2 * Math.max(0, jitterMs) + this.marginMs) / this.tickMs;
     this.lead = Math.max(this.minLead, Math.min(this.maxLead, base + this.boost));
     return this.lead;
   }

@@ -303,7 +303,8 @@ export class LinkSession {
     const now = this.o.clock.nowMs();
     lead.update(sync.jitterMs, this.missedInputTicks, now);
     const oneWayMs = (sync.rttMs ?? 0) / 2;
-    const target = Math.floor(sync.serverTickAt(now + oneWayMs)) + lead.leadTicks;
+    // The earliest tick the server has not run yet when the input arrives, with the lead's safety margin.
+    const target = Math.floor(sync.serverTickAt(now + oneWayMs) + lead.leadTicks);
     if (target >= 0) {
       const msg = this.sender.update(target);
       if (msg !== null) {
