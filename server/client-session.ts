@@ -10,6 +10,7 @@ import {
   MAX_CLIENT_MESSAGE_BYTES,
   PROTOCOL_VERSION,
   quantizeFrame,
+  SharedFrameWork,
   SnapshotEncoder,
   snapshotFormatSpec,
   type ClientMessage,
@@ -345,25 +346,22 @@ export class ClientSession implements RoomMember {
       q = quantizeFrame(this.encoder.format, frame.tick, frame.bodies, frame.characters, { includeStatic: (id) => !room.isSceneStatic(id) });
       frame.cache.set('quantized', q);
     }
-    let shared = frame.cache.get('snapshotBytes') as Map<number, Uint8Array> | undefined;
+    let shared = frame.cache.get('snapshotWork') as SharedFrameWork | undefined;
     if (!shared) {
-      shared = new Map();
-      frame.cache.set('snapshotBytes', shared);
+      shared = new SharedFrameWork();
+      frame.cache.set('snapshotWork', shared);
     }
     const encoded = this.encoder.encode(q, (id) => room.sim.bodyDescriptor(id) ?? undefined, shared);
-    let size: number;
-    if (encoded.descriptors.length === 0) {
-      // Clients that share a baseline get the very same message: frame it once per tick and baseline.
-      const key = `snapshotMessage:${encoded.baselineTick ?? -1}`;
-      let message = frame.cache.get(key) as Uint8Array | undefined;
-      if (!message) {
-        message = encodeServerMessage({ type: 'snapshot', bytes: encoded.bytes, descriptors: [] });
-        frame.cache.set(key, message);
-      }
-      size = this.sendEncoded(message);
-    } else {
-      size = this.send({ type: 'snapshot', bytes: encoded.bytes, descriptors: encoded.descriptors });
+    // Clients that share a baseline and the spawned bodies they still lack get the very same message: frame it once
+    // per tick, baseline and descriptor set (a descriptor is the same object for every client within a tick).
+    let key = `snapshotMessage:${encoded.baselineTick ?? -1}`;
+    for (const d of encoded.descriptors) key += `,${d.id}`;
+    let message = frame.cache.get(key) as Uint8Array | undefined;
+    if (!message) {
+      message = encodeServerMessage({ type: 'snapshot', bytes: encoded.bytes, descriptors: encoded.descriptors });
+      frame.cache.set(key, message);
     }
+    const size = this.sendEncoded(message);
     this.stats.snapshotsSent++;
     this.stats.snapshotBytes += size;
     m.snapshotBytes.observe(size);

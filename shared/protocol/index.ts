@@ -36,5 +36,5 @@ export {
   type QuantizeFrameOptions,
   type SnapshotView,
 } from './snapshot-frame.ts';
-export { SnapshotDecoder, SnapshotEncoder, TickHistory, type AckOutcome, type DecodedSnapshot, type EncodedSnapshot, type SnapshotEncoderStats } from './snapshot-stream.ts';
+export { SharedFrameWork, SnapshotDecoder, SnapshotEncoder, TickHistory, type AckOutcome, type DecodedSnapshot, type EncodedSnapshot, type SnapshotEncoderStats } from './snapshot-stream.ts';
 export { checkPlayerName, checkRoomId, decodeClientMessage, type ClientDecodeResult } from './validation.ts';

@@ -43,14 +43,31 @@ export class TickHistory<T> {
   }
 }
 
-/** Calls fn for each id of the ascending list `before` that is missing from the ascending list `after`. */
-function forEachRemoved(before: Uint32Array, after: Uint32Array, fn: (id: number) => void): void {
+/** Ids of the ascending list `before` that are missing from the ascending list `after` (bodies removed). */
+function removedIds(before: Uint32Array, after: Uint32Array): number[] {
+  const out: number[] = [];
   let j = 0;
   for (let i = 0; i < before.length; i++) {
     const id = before[i];
     while (j < after.length && after[j] < id) j++;
-    if (j >= after.length || after[j] !== id) fn(id);
+    if (j >= after.length || after[j] !== id) out.push(id);
   }
+  return out;
+}
+
+/** Ids of the ascending list `after` that are missing from the ascending list `before` (bodies new since then). */
+function addedIds(before: Uint32Array, after: Uint32Array): number[] {
+  return removedIds(after, before);
+}
+
+/**
+ * Work on one frame shared by the encoders of a room (same frame object, same format): encoded bytes and the ids new
+ * since a baseline, both by baseline tick (-1: full snapshot), and the ids removed since a previous frame's id list.
+ */
+export class SharedFrameWork {
+  readonly bytes = new Map<number, Uint8Array>();
+  readonly fresh = new Map<number, ArrayLike<number>>();
+  readonly removed = new Map<Uint32Array, number[]>();
 }
 
 /** One encoded snapshot for one client. */
@@ -155,33 +172,40 @@ export class SnapshotEncoder {
 
   /**
    * Encodes a frame for this client and remembers it as a possible baseline. `describe(id)` returns a body's
-   * descriptor; a spawned body without one throws (a server bug, not a client's doing). `shared` (optional) is a
-   * cache of encoded bytes by baseline tick for THIS frame object and the same format, used by every client of a
-   * room in one tick: encoding then costs once per distinct baseline instead of once per client.
+   * descriptor; a spawned body without one throws (a server bug, not a client's doing). `shared` (optional) is the
+   * work cache of THIS frame object and the same format, used by every client of a room in one tick: the bit-packed
+   * bytes and the scan for bodies new since a baseline then cost once per distinct baseline instead of once per client.
    */
-  encode(frame: QuantizedFrame, describe: (bodyId: number) => BodyDescriptor | undefined, shared?: Map<number, Uint8Array>): EncodedSnapshot {
+  encode(frame: QuantizedFrame, describe: (bodyId: number) => BodyDescriptor | undefined, shared?: SharedFrameWork): EncodedSnapshot {
     const baseEntry = this.ackedTick >= 0 ? this.sent.get(this.ackedTick) : undefined;
     const baseline = baseEntry !== undefined && baseEntry.frame.tick < frame.tick ? baseEntry.frame : null;
     // The bytes depend only on (format, frame, baseline): clients of one room that acked the same tick share them.
     const key = baseline === null ? -1 : baseline.tick;
-    let bytes = shared?.get(key);
+    let bytes = shared?.bytes.get(key);
     if (bytes === undefined) {
       bytes = encodeSnapshot(this.format, frame, baseline);
-      shared?.set(key, bytes);
+      shared?.bytes.set(key, bytes);
     }
     // Bodies gone since the previous encode are forgotten, so a reused id gets its new descriptor.
-    if (this.previousIds !== null && this.known.size > 0) forEachRemoved(this.previousIds, frame.bodyIds, (id) => this.known.delete(id));
+    if (this.previousIds !== null && this.previousIds !== frame.bodyIds && this.known.size > 0) {
+      let gone = shared?.removed.get(this.previousIds);
+      if (gone === undefined) {
+        gone = removedIds(this.previousIds, frame.bodyIds);
+        shared?.removed.set(this.previousIds, gone);
+      }
+      for (const id of gone) this.known.delete(id);
+    }
     this.previousIds = frame.bodyIds;
+    // Candidates for descriptors: bodies of the frame missing from the baseline (all of them for a full snapshot).
+    let fresh = shared?.fresh.get(key);
+    if (fresh === undefined) {
+      fresh = baseline === null ? frame.bodyIds : addedIds(baseline.bodyIds, frame.bodyIds);
+      shared?.fresh.set(key, fresh);
+    }
     const descriptors: BodyDescriptor[] = [];
     const descriptorIds: number[] = [];
-    const baseIds = baseline?.bodyIds;
-    let j = 0;
-    for (let i = 0; i < frame.bodyIds.length; i++) {
-      const id = frame.bodyIds[i];
-      if (baseIds !== undefined) {
-        while (j < baseIds.length && baseIds[j] < id) j++;
-        if (j < baseIds.length && baseIds[j] === id) continue;
-      }
+    for (let i = 0; i < fresh.length; i++) {
+      const id = fresh[i];
       if (this.known.has(id)) continue;
       const d = describe(id);
       if (d === undefined) throw new Error(`SnapshotEncoder: no descriptor for spawned body ${id}`);

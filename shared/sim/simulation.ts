@@ -14,6 +14,9 @@ import { dumpState, firstDivergence, hashDump, type Divergence, type StateDump }
 import { runTick } from './tick.ts';
 import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from './types.ts';
 
+/** The world's bulk body read (ids ascending, 13 floats per body, BodyFlag bits). */
+type BodyStates = ReturnType<PhysicsWorld['readBodyStates']>;
+
 /** Options of Simulation.create. */
 export interface SimulationOptions {
   scenario: ScenarioDefinition;
@@ -46,6 +49,9 @@ function checkSeed(seed: unknown): number | string {
 export class Simulation {
   private readonly core: SimCore;
   private hashCache: { tick: number; hash: string } | null = null;
+  // The world's bulk read for the current tick: the state hash and the snapshot both need it after a step, and the
+  // world cannot change between steps (it is read-only outside step/restore, which drop this).
+  private readCache: { tick: number; states: BodyStates } | null = null;
   private destroyed = false;
 
   private constructor(core: SimCore) {
@@ -131,6 +137,7 @@ export class Simulation {
   step(record: TickInputRecord): SimEvent[] {
     const core = this.live();
     this.hashCache = null;
+    this.readCache = null;
     return runTick(core, record).slice();
   }
 
@@ -138,7 +145,7 @@ export class Simulation {
   stateHash(): string {
     const core = this.live();
     if (this.hashCache && this.hashCache.tick === core.tick) return this.hashCache.hash;
-    const hash = hashDump(dumpState(core, false));
+    const hash = hashDump(dumpState(core, false, this.readBodyStates()));
     this.hashCache = { tick: core.tick, hash };
     return hash;
   }
@@ -159,9 +166,13 @@ export class Simulation {
     return this.live().players.characterStates();
   }
 
-  /** Bulk body state in id order (reused arrays: copy what you keep). */
-  readBodyStates(): ReturnType<PhysicsWorld['readBodyStates']> {
-    return this.live().world.readBodyStates();
+  /** Bulk body state in id order, read once per tick (reused arrays, valid until the next step: copy what you keep). */
+  readBodyStates(): BodyStates {
+    const core = this.live();
+    if (this.readCache !== null && this.readCache.tick === core.tick) return this.readCache.states;
+    const states = core.world.readBodyStates();
+    this.readCache = { tick: core.tick, states };
+    return states;
   }
 
   /** How to draw a body, or undefined if there is none with that id. */
@@ -193,6 +204,7 @@ export class Simulation {
   restoreCheckpoint(cp: Checkpoint): void {
     restoreCheckpoint(this.live(), cp);
     this.hashCache = null;
+    this.readCache = null;
   }
 
   /** The checkpoint as self-describing, versioned bytes (for disk); restorable into any simulation of the same setup. */
@@ -205,6 +217,7 @@ export class Simulation {
   restoreCheckpointBytes(bytes: Uint8Array): void {
     decodeCheckpoint(this.live(), bytes);
     this.hashCache = null;
+    this.readCache = null;
   }
 
   /** Frees the world and everything in it. */

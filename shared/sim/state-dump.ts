@@ -1,10 +1,13 @@
 // What the state hash covers, as data: a StateDump of a simulation (bodies' raw float bits in id order, characters,
 // players, PRNG, bullets, scenario state), its 64-bit hash, and the first difference between two dumps.
-import { BODY_STATE_STRIDE } from '../physics/index.ts';
+import { BODY_STATE_STRIDE, type PhysicsWorld } from '../physics/index.ts';
 import type { Bullet } from './bullets.ts';
 import type { InputCommand } from './input.ts';
 import type { SimCore } from './sim-core.ts';
 import { Hasher64 } from './state-hash.ts';
+
+/** The world's bulk body read (ids ascending, 13 floats per body, BodyFlag bits). */
+type BodyStates = ReturnType<PhysicsWorld['readBodyStates']>;
 
 const GROUND_CODES = { ground: 0, steep: 1, air: 2, unsupported: 3 } as const;
 
@@ -44,10 +47,11 @@ export interface StateDump {
 
 /**
  * The hashed state of a simulation core. With `copy` false the body arrays are views into the world's reused
- * read buffers (valid until the next read: enough to hash at once without copying).
+ * read buffers (valid until the next read: enough to hash at once without copying). `bodies`: this tick's bulk read
+ * when the caller already has it (saves reading every body again).
  */
-export function dumpState(core: SimCore, copy = true): StateDump {
-  const b = core.world.readBodyStates();
+export function dumpState(core: SimCore, copy = true, bodies?: BodyStates): StateDump {
+  const b = bodies ?? core.world.readBodyStates();
   const rows = core.world.sensorHub.exportOverlaps();
   const overlaps: number[] = [];
   for (let i = 0; i + 4 < rows.length; i += 5) overlaps.push(rows[i + 2], rows[i + 3], rows[i + 4]);

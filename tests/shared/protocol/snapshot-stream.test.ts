@@ -4,7 +4,7 @@
 import { describe, expect, it } from 'vitest';
 import { createSnapshotFormat } from '../../../shared/protocol/quantization.ts';
 import { framesEqual, quantizeFrame, type QuantizedFrame } from '../../../shared/protocol/snapshot-frame.ts';
-import { SnapshotDecoder, SnapshotEncoder, TickHistory, type EncodedSnapshot } from '../../../shared/protocol/snapshot-stream.ts';
+import { SharedFrameWork, SnapshotDecoder, SnapshotEncoder, TickHistory, type EncodedSnapshot } from '../../../shared/protocol/snapshot-stream.ts';
 import { Prng } from '../../../shared/sim/prng.ts';
 import { scenario as cubes901 } from '../../../scenarios/cubes-901.ts';
 import { BotScript } from '../../../shared/sim/bots.ts';
@@ -47,7 +47,7 @@ describe('snapshot-stream', () => {
     const sendAll = (): EncodedSnapshot[] => {
       world.step();
       const frame = frameOf(world);
-      const shared = new Map<number, Uint8Array>();
+      const shared = new SharedFrameWork();
       const out = encoders.map((enc) => enc.encode(frame, describe, shared));
       out.forEach((s, i) => expect(framesEqual(decoders[i].decode(s.bytes).frame, frame)).toBe(true));
       return out;
@@ -61,6 +61,35 @@ describe('snapshot-stream', () => {
     expect(second[2].bytes).not.toBe(second[0].bytes); // no ack yet: a full snapshot of its own
     expect(second[2].baselineTick).toBeNull();
     expect(second[0].baselineTick).toBe(1);
+  });
+
+  it('gives every client the same snapshots and descriptors with shared frame work as without it', () => {
+    const world = new SyntheticWorld({ seed: 11, bodies: 12, spawnChance: 0.3, removeChance: 0.2 });
+    const describe = (id: number) => world.describe(id);
+    const alone = [0, 1, 2, 3].map(() => new SnapshotEncoder(format, { historySize: 8 }));
+    const sharing = [0, 1, 2, 3].map(() => new SnapshotEncoder(format, { historySize: 8 }));
+    for (const enc of [...alone, ...sharing]) enc.markDescriptorsKnown(world.bodies.map((b) => b.id));
+    const rng = new Prng(12);
+    let descriptorsSeen = 0;
+    for (let t = 0; t < 120; t++) {
+      world.step();
+      const frame = frameOf(world);
+      const work = new SharedFrameWork();
+      for (let c = 0; c < 4; c++) {
+        // Clients ack at different ticks (some never), so baselines and known descriptors differ between them.
+        const ackTick = frame.tick - 1 - c * 2;
+        if (c < 3 && ackTick > 0 && rng.nextU32() % 4 !== 0) {
+          expect(sharing[c].acknowledge(ackTick)).toBe(alone[c].acknowledge(ackTick));
+        }
+        const a = alone[c].encode(frame, describe);
+        const s = sharing[c].encode(frame, describe, work);
+        expect(s.baselineTick).toBe(a.baselineTick);
+        expect(s.bytes).toEqual(a.bytes);
+        expect(s.descriptors.map((d) => d.id)).toEqual(a.descriptors.map((d) => d.id));
+        descriptorsSeen += a.descriptors.length;
+      }
+    }
+    expect(descriptorsSeen).toBeGreaterThan(0);
   });
 
   it('holds back repeated full snapshots while the first one awaits its ack', () => {

@@ -194,4 +194,25 @@ describe('simulation', () => {
     sim.destroy();
     clean.destroy();
   });
+  it('reads body states that match the world after every step and after a checkpoint restore', async () => {
+    const sim = await makeSim();
+    const copy = (r: ReturnType<Simulation['readBodyStates']>) => ({ ids: Array.from(r.ids), states: Array.from(r.states), flags: Array.from(r.flags) });
+    const records = botRecords(40, { bots: 2 });
+    for (const r of records.slice(0, 20)) sim.step(r);
+    const cp = sim.saveCheckpoint();
+    const atSave = copy(sim.world.readBodyStates());
+    const hashAtSave = sim.stateHash();
+    for (const r of records.slice(20)) {
+      sim.step(r);
+      const hash = sim.stateHash(); // reads the bodies first; the read below must still be this tick's
+      expect(copy(sim.readBodyStates())).toEqual(copy(sim.world.readBodyStates()));
+      expect(hash).not.toBe(hashAtSave);
+    }
+    expect(copy(sim.readBodyStates())).not.toEqual(atSave);
+    sim.restoreCheckpoint(cp);
+    expect(copy(sim.readBodyStates())).toEqual(atSave);
+    expect(sim.stateHash()).toBe(hashAtSave);
+    cp.dispose();
+    sim.destroy();
+  });
 });
