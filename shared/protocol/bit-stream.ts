@@ -17,9 +17,7 @@ export class BitWriter {
     return this.bitPos;
   }
 
-  private ensure(extraBits: number): void {
-    const needBytes = (this.bitPos + extraBits + 7) >>> 3;
-    if (needBytes <= this.buf.length) return;
+  private grow(needBytes: number): void {
     let cap = this.buf.length * 2;
     while (cap < needBytes) cap *= 2;
     const next = new Uint8Array(cap);
@@ -34,18 +32,21 @@ export class BitWriter {
       throw new Error(`BitWriter.writeBits: need an unsigned integer and 1..32 bits, got ${value} in ${count} bits`);
     }
     if (count < 32 && value >= (1 << count) >>> 0) throw new Error(`BitWriter.writeBits: ${value} does not fit in ${count} bits`);
-    this.ensure(count);
-    let v = value >>> 0;
-    let n = count;
+    const pos = this.bitPos;
+    const needBytes = (pos + count + 7) >>> 3;
+    if (needBytes > this.buf.length) this.grow(needBytes);
     const buf = this.buf;
-    while (n > 0) {
-      const byteIndex = this.bitPos >>> 3;
-      const bitOffset = this.bitPos & 7;
-      const take = Math.min(8 - bitOffset, n);
-      buf[byteIndex] |= (v & ((1 << take) - 1)) << bitOffset;
-      v >>>= take;
-      this.bitPos += take;
-      n -= take;
+    let byteIndex = pos >>> 3;
+    const offset = pos & 7;
+    this.bitPos = pos + count;
+    // The value has no bits above `count`, and bytes past the write position are still zero.
+    buf[byteIndex] |= (value << offset) & 0xff;
+    const first = 8 - offset;
+    if (count <= first) return;
+    let v = (value >>> 0) >>> first;
+    for (let n = count - first; n > 0; n -= 8) {
+      buf[++byteIndex] = v & 0xff;
+      v >>>= 8;
     }
   }
 
@@ -62,6 +63,13 @@ export class BitWriter {
     const x1 = high + 1;
     const m = 31 - Math.clz32(x1);
     // m zeros, a terminating 1 (x1's top bit), x1's m lower bits, then the k low bits of the value.
+    const prefixBits = 2 * m + 1;
+    if (prefixBits + k <= 32) {
+      // One field, least significant bit first: the same bits as the four writes below (prefixBits is odd, ≤ 31).
+      const prefix = ((1 << m) >>> 0) + (x1 - ((1 << m) >>> 0)) * ((1 << (m + 1)) >>> 0);
+      this.writeBits(prefix + low * ((1 << prefixBits) >>> 0), prefixBits + k);
+      return;
+    }
     this.writeBits(0, m);
     this.writeBits(1, 1);
     this.writeBits(x1 - ((1 << m) >>> 0), m);
@@ -174,8 +182,9 @@ export function bestExpGolombOrder(values: ArrayLike<number>, count: number, max
   let bestK = 0;
   let bestBits = Infinity;
   for (let k = 0; k <= maxK; k++) {
+    // expGolombBits per value, with the division as a shift (codable values are below 2^31).
     let bits = 0;
-    for (let i = 0; i < count; i++) bits += expGolombBits(values[i], k);
+    for (let i = 0; i < count; i++) bits += 2 * (31 - Math.clz32((values[i] >>> k) + 1)) + 1 + k;
     if (bits < bestBits) {
       bestBits = bits;
       bestK = k;

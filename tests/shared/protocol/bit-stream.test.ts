@@ -37,6 +37,38 @@ describe('bit-stream', () => {
     for (const [v, k] of items) expect(r.readExpGolomb(k)).toBe(v);
   });
 
+  it('lays out raw fields and Exp-Golomb codes bit for bit, least significant bit first, at every offset', () => {
+    // Reference: one bit at a time (m zeros, a 1, the m low bits of value/2^k + 1, then the k low bits of value).
+    const bits: number[] = [];
+    const raw = (v: number, n: number): void => {
+      for (let i = 0; i < n; i++) bits.push(Math.floor(v / 2 ** i) % 2);
+    };
+    const rng = new Prng(21);
+    const w = new BitWriter(16);
+    for (let i = 0; i < 3000; i++) {
+      if (rng.next() < 0.5) {
+        const n = rng.int(1, 32);
+        const v = rng.int(0, 2 ** Math.min(n, 31) - 1) + (n === 32 && rng.next() < 0.5 ? 2 ** 31 : 0);
+        w.writeBits(v, n);
+        raw(v, n);
+      } else {
+        const k = rng.int(0, 20);
+        const v = rng.next() < 0.3 ? rng.int(0, 0x7fff_ffff) : rng.int(0, 300);
+        w.writeExpGolomb(v, k);
+        const x1 = Math.floor(v / 2 ** k) + 1;
+        const m = 31 - Math.clz32(x1);
+        raw(0, m);
+        raw(1, 1);
+        raw(x1 - 2 ** m, m);
+        raw(v % 2 ** k, k);
+      }
+    }
+    expect(w.bitLength).toBe(bits.length);
+    const expected = new Uint8Array(Math.ceil(bits.length / 8));
+    bits.forEach((b, i) => (expected[i >> 3] |= b << (i & 7)));
+    expect(w.finish()).toEqual(expected);
+  });
+
   it('codes zero in one bit at order 0 and small signed deltas compactly', () => {
     const w = new BitWriter();
     w.writeExpGolomb(0, 0);
