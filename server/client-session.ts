@@ -28,6 +28,9 @@ import { RateLimiter, type RateLimit } from './rate-limiter.ts';
 import { RoomError, type Room, type RoomMember, type WorldFrame } from './room.ts';
 import type { RoomManager } from './room-manager.ts';
 
+/** Framed events messages by the room's event list of a tick (the list is never changed after delivery). */
+const eventMessages = new WeakMap<readonly SimEvent[], Uint8Array>();
+
 /** Per-client limits. */
 export interface SessionLimits {
   /** All messages: sustained rate and burst. Beyond it the client is disconnected (flood). */
@@ -325,7 +328,13 @@ export class ClientSession implements RoomMember {
   deliverEvents(_tick: number, events: readonly SimEvent[]): void {
     if (this.state !== 'joined') return;
     if (this.tooFarBehind()) return;
-    this.send({ type: 'events', events: events as SimEvent[] });
+    // The room hands every member the same list: frame it once per tick, not once per client.
+    let message = eventMessages.get(events);
+    if (message === undefined) {
+      message = encodeServerMessage({ type: 'events', events: events as SimEvent[] });
+      eventMessages.set(events, message);
+    }
+    this.sendEncoded(message);
   }
 
   /** A snapshot for this client, unless its socket is backed up (RoomMember). */

@@ -2,7 +2,7 @@
 // the other players' world is untouched (identical hash sequence), slow readers get snapshots skipped, not queued.
 import { afterEach, describe, expect, it } from 'vitest';
 import { ByeReason, ErrorCode, packValue } from '../../shared/protocol/index.ts';
-import { NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input.ts';
+import { Button, NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input.ts';
 import { startHarness, type Harness, type TestClient } from './harness.ts';
 import { stripScenario } from './test-scenarios.ts';
 
@@ -64,6 +64,30 @@ describe('ClientSession', () => {
     expect(await h.server.metrics.registry.getSingleMetricAsString('taos_inputs_clamped_total')).toMatch(/ 1$/);
     const applied = h.history().records.find((r) => r.tick === tick)?.commands.find((cmd) => cmd.playerId === c.playerId)?.input;
     expect(applied).toEqual({ moveX: 127, moveZ: -127, yaw: 70000 - 65536, pitch: 16384, buttons: 1 });
+  });
+
+  it('gives clients that share or differ in baseline every spawned body descriptor and the same events', async () => {
+    h = await startHarness({ scenarios: [stripScenario], snapshotRateHz: 60 });
+    const shooter = await h.join('ann');
+    const watcher = await h.join('bob');
+    const lagger = await h.join('cat');
+    lagger.autoAck = false; // never acks: full snapshots, a baseline of its own
+    h.ticks(2);
+    const from = h.room().sim.tick; // every client is in the world from here on
+    const since = (c: TestClient) => c.events.filter((e) => e.tick >= from);
+    for (let i = 0; i < 90; i++) {
+      shooter.input(h.room().sim.tick + 2, [walk(0, 0, i % 10 === 0 ? Button.Fire : 0)]);
+      h.ticks(1);
+    }
+    const spawned = since(shooter).filter((e) => e.type === 'bodySpawned').map((e) => (e as { bodyId: number }).bodyId);
+    expect(spawned.length).toBeGreaterThan(3);
+    for (const c of [shooter, watcher, lagger]) {
+      expect(since(c)).toEqual(since(shooter));
+      const described = new Set([...c.welcome!.dynamicBodies, ...c.ofType('snapshot').flatMap((m) => m.descriptors)].map((d) => d.id));
+      const seen = new Set(c.frames.flatMap((f) => Array.from(f.bodyIds)));
+      for (const id of spawned) if (seen.has(id)) expect(described.has(id)).toBe(true);
+      expect(spawned.some((id) => seen.has(id))).toBe(true);
+    }
   });
 
   it('refuses input and acks before the welcome', async () => {
