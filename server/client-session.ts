@@ -28,6 +28,8 @@ import { RateLimiter, type RateLimit } from './rate-limiter.ts';
 import { RoomError, type Room, type RoomMember, type WorldFrame } from './room.ts';
 import type { RoomManager } from './room-manager.ts';
 
+/** Each room's latest quantized frame and the body copies it came from (the next frame's starting point). */
+const lastQuantized = new WeakMap<Room, { bodies: WorldFrame['bodies']; frame: QuantizedFrame }>();
 /** Framed events messages by the room's event list of a tick (the list is never changed after delivery). */
 const eventMessages = new WeakMap<readonly SimEvent[], Uint8Array>();
 
@@ -352,8 +354,12 @@ export class ClientSession implements RoomMember {
     const room = this.room;
     let q = frame.cache.get('quantized') as QuantizedFrame | undefined;
     if (!q) {
-      q = quantizeFrame(this.encoder.format, frame.tick, frame.bodies, frame.characters, { includeStatic: (id) => !room.isSceneStatic(id) });
+      // Bodies whose pose has not changed since the room's previous frame keep its integers (one format per room).
+      const last = lastQuantized.get(room);
+      const previous = last !== undefined && last.frame.tick < frame.tick ? { read: last.bodies, frame: last.frame } : undefined;
+      q = quantizeFrame(this.encoder.format, frame.tick, frame.bodies, frame.characters, { includeStatic: (id) => !room.isSceneStatic(id), previous });
       frame.cache.set('quantized', q);
+      lastQuantized.set(room, { bodies: frame.bodies, frame: q });
     }
     let shared = frame.cache.get('snapshotWork') as SharedFrameWork | undefined;
     if (!shared) {

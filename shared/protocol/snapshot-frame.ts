@@ -67,6 +67,11 @@ export interface SnapshotView {
 export interface QuantizeFrameOptions {
   /** Static bodies are normally sent once in the welcome; return true for a static body that snapshots must carry. */
   includeStatic?: (bodyId: number) => boolean;
+  /**
+   * The previous frame quantized in the SAME format and the read it came from: bodies whose pose floats are equal
+   * reuse its integers instead of quantizing again (bodies at rest cost a comparison). Same result either way.
+   */
+  previous?: { read: BodyStatesRead; frame: QuantizedFrame };
 }
 
 /**
@@ -89,6 +94,10 @@ export function quantizeFrame(format: SnapshotFormat, tick: number, read: BodySt
   const [stepsX, stepsY, stepsZ] = format.positionSteps;
   const bodyIds = new Uint32Array(kept);
   const bodies = new Int32Array(kept * BODY_Q_STRIDE);
+  const prevRead = opts.previous?.read;
+  const prevFrame = opts.previous?.frame;
+  let pi = 0;
+  let pj = 0;
   let j = 0;
   let prev = -1;
   for (let i = 0; i < n; i++) {
@@ -101,10 +110,27 @@ export function quantizeFrame(format: SnapshotFormat, tick: number, read: BodySt
     const s = i * BODY_STATE_STRIDE;
     const o = j * BODY_Q_STRIDE;
     bodyIds[j] = id;
-    bodies[o] = gridIndex(states[s], minX, stepX, stepsX);
-    bodies[o + 1] = gridIndex(states[s + 1], minY, stepY, stepsY);
-    bodies[o + 2] = gridIndex(states[s + 2], minZ, stepZ, stepsZ);
-    quantizeRotation(format, states[s + 3], states[s + 4], states[s + 5], states[s + 6], bodies, o + 3);
+    let reused = false;
+    if (prevRead !== undefined && prevFrame !== undefined) {
+      while (pi < prevRead.count && prevRead.ids[pi] < id) pi++;
+      const ps = pi * BODY_STATE_STRIDE;
+      const ps0 = prevRead.states;
+      if (pi < prevRead.count && prevRead.ids[pi] === id && ps0[ps] === states[s] && ps0[ps + 1] === states[s + 1] && ps0[ps + 2] === states[s + 2] && ps0[ps + 3] === states[s + 3] && ps0[ps + 4] === states[s + 4] && ps0[ps + 5] === states[s + 5] && ps0[ps + 6] === states[s + 6]) {
+        const ids = prevFrame.bodyIds;
+        while (pj < ids.length && ids[pj] < id) pj++;
+        if (pj < ids.length && ids[pj] === id) {
+          const po = pj * BODY_Q_STRIDE;
+          for (let f = 0; f < 7; f++) bodies[o + f] = prevFrame.bodies[po + f];
+          reused = true;
+        }
+      }
+    }
+    if (!reused) {
+      bodies[o] = gridIndex(states[s], minX, stepX, stepsX);
+      bodies[o + 1] = gridIndex(states[s + 1], minY, stepY, stepsY);
+      bodies[o + 2] = gridIndex(states[s + 2], minZ, stepZ, stepsZ);
+      quantizeRotation(format, states[s + 3], states[s + 4], states[s + 5], states[s + 6], bodies, o + 3);
+    }
     bodies[o + 7] = (flags & BodyFlag.Active) === 0 ? 1 : 0;
     j++;
   }

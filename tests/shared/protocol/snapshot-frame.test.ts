@@ -64,6 +64,23 @@ describe('snapshot-frame', () => {
     }
   });
 
+  it('quantizes the same integers when it reuses the previous frame for bodies that did not move', () => {
+    const world = new SyntheticWorld({ seed: 31, bodies: 40, spawnChance: 0.3, removeChance: 0.3 });
+    let previous: { read: ReturnType<SyntheticWorld['read']>; frame: ReturnType<typeof quantizeFrame> } | undefined;
+    let unchanged = 0;
+    for (let t = 0; t < 80; t++) {
+      world.step();
+      const read = world.read();
+      const includeStatic = t % 3 === 0 ? () => true : undefined;
+      const fresh = quantizeFrame(format, world.tick, read, world.characterStates(), { includeStatic });
+      const reused = quantizeFrame(format, world.tick, read, world.characterStates(), { includeStatic, previous });
+      expect(framesEqual(reused, fresh)).toBe(true);
+      if (previous) unchanged += fresh.bodyIds.filter((id) => previous!.frame.bodyIds.includes(id)).length;
+      previous = { read, frame: reused };
+    }
+    expect(unchanged).toBeGreaterThan(0);
+  });
+
   it('compares frames integer by integer', () => {
     const world = new SyntheticWorld({ seed: 8 });
     const a = quantizeFrame(format, 1, world.read(), world.characterStates());
