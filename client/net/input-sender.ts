@@ -98,13 +98,15 @@ export interface InputLeadOptions {
   maxLeadTicks?: number;
   /** Safety margin added to twice the RTT jitter (ms). Default 4. */
   marginMs?: number;
-  /** A boost from late inputs decays by one tick after this long without new misses (ms). Default 8000. */
+  /** A boost from late inputs decays by one step after this long without new misses (ms). Default 8000. */
   decayMs?: number;
+  /** How much lead (ticks) each report of late inputs adds, and each quiet period removes. Default 0.25. */
+  boostStepTicks?: number;
 }
 
 /**
- * The adaptive input lead, in (fractional) ticks: (2·jitter + margin) / tick + boost, clamped; boost rises by a whole
- * tick each time the server reports late inputs. The sender targets floor(estimated server tick at arrival + lead):
+ * The adaptive input lead, in (fractional) ticks: (2·jitter + margin) / tick + boost, clamped; boost rises by a
+ * quarter tick each time the server reports late inputs. The sender targets floor(estimated server tick at arrival + lead):
  * the earliest tick that still leaves the margin, so on a calm link an input is applied by the first tick after it
  * arrives.
  */
@@ -115,6 +117,7 @@ export class InputLead {
   private readonly marginMs: number;
   private readonly decayMs: number;
   private boost = 0;
+  private readonly boostStep: number;
   private lastMissed: number | null = null;
   private lastChangeMs = 0;
   private lead: number;
@@ -125,6 +128,8 @@ export class InputLead {
     this.maxLead = opts.maxLeadTicks ?? 12;
     this.marginMs = opts.marginMs ?? 4;
     this.decayMs = opts.decayMs ?? 8000;
+    this.boostStep = opts.boostStepTicks ?? 0.25;
+    if (!(this.boostStep > 0 && this.boostStep <= 12)) throw new Error('InputLead: boostStepTicks must be in (0, 12]');
     if (!(this.minLead >= 0 && this.maxLead >= this.minLead)) throw new Error('InputLead: need 0 ≤ minLeadTicks ≤ maxLeadTicks');
     this.lead = this.minLead;
   }
@@ -143,13 +148,13 @@ export class InputLead {
   update(jitterMs: number, missedInputTicks: number | null, nowMs: number): number {
     if (missedInputTicks !== null) {
       if (this.lastMissed !== null && missedInputTicks > this.lastMissed) {
-        this.boost = Math.min(this.boost + 1, this.maxLead);
+        this.boost = Math.min(this.boost + this.boostStep, this.maxLead);
         this.lastChangeMs = nowMs;
       }
       this.lastMissed = missedInputTicks;
     }
     if (this.boost > 0 && nowMs - this.lastChangeMs >= this.decayMs) {
-      this.boost--;
+      this.boost = Math.max(0, this.boost - this.boostStep);
       this.lastChangeMs = nowMs;
     }
     const base = (2 * Math.max(0, jitterMs) + this.marginMs) / this.tickMs;

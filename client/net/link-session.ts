@@ -17,6 +17,9 @@ import { InputLead, InputSender, type InputLeadOptions } from './input-sender.ts
 import { InterpolationBuffer, type InterpolatedFrame, type InterpolationOptions } from './interpolation.ts';
 import type { Transport, TransportFactory } from './transport.ts';
 
+/** The input pump's period, in ticks. */
+const PUMP_SPACING_TICKS = 0.5;
+
 /** A decoded snapshot as the client reports it. */
 export interface SnapshotInfo {
   tick: number;
@@ -303,8 +306,10 @@ export class LinkSession {
     const now = this.o.clock.nowMs();
     lead.update(sync.jitterMs, this.missedInputTicks, now);
     const oneWayMs = (sync.rttMs ?? 0) / 2;
-    // The earliest tick the server has not run yet when the input arrives, with the lead's safety margin.
-    const target = Math.floor(sync.serverTickAt(now + oneWayMs) + lead.leadTicks);
+    // The pump runs every half tick, so the command for tick T first goes out within half a tick after the server's
+    // tick count (at arrival) passes T: T is then the next tick the server runs, at least half a tick away. The lead
+    // (jitter margin + boost) only moves the target further when it needs more than that half tick.
+    const target = Math.floor(sync.serverTickAt(now + oneWayMs) + Math.max(0, lead.leadTicks - PUMP_SPACING_TICKS));
     if (target >= 0) {
       const msg = this.sender.update(target);
       if (msg !== null) {
@@ -312,7 +317,7 @@ export class LinkSession {
         this.send(msg);
       }
     }
-    this.schedule(sync.tickMs / 2, () => this.pump());
+    this.schedule(sync.tickMs * PUMP_SPACING_TICKS, () => this.pump());
   }
 
   private onSnapshot(bytes: Uint8Array, descriptors: BodyDescriptor[], sizeBytes: number, now: number): void {

@@ -54,8 +54,8 @@ describe('input-sender', () => {
     expect(lead.update(1000, 0, 0)).toBe(12);
   });
 
-  it('adds a tick each time the server reports more missed inputs, then decays after quiet periods', () => {
-    const lead = new InputLead({ tickRateHz: 60, decayMs: 5000 });
+  it('adds a step each time the server reports more missed inputs, then decays after quiet periods', () => {
+    const lead = new InputLead({ tickRateHz: 60, decayMs: 5000, boostStepTicks: 1 });
     const calm = lead.update(0, 0, 0);
     expect(lead.update(0, 3, 1000)).toBeCloseTo(calm + 1, 6);
     expect(lead.update(0, 3, 2000)).toBeCloseTo(calm + 1, 6);
@@ -64,5 +64,8 @@ describe('input-sender', () => {
     expect(lead.update(0, 5, 8000)).toBeCloseTo(calm + 1, 6);
     expect(lead.update(0, 5, 13000)).toBeCloseTo(calm, 6);
     expect(lead.update(0, 5, 30000)).toBeCloseTo(calm, 6);
+    const fine = new InputLead({ tickRateHz: 60 });
+    const base = fine.update(0, 0, 0);
+    expect(fine.update(0, 2, 100)).toBeCloseTo(base + 0.25, 6); // a quarter tick per report by default
   });
 });
