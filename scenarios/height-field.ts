@@ -2,7 +2,7 @@
 // balls, boxes, capsules and hulls dropped onto it a few per tick; they roll into the hollows and settle.
 import type { ScenarioContext, ScenarioDefinition, ScenarioInstance } from '../shared/sim/scenario.ts';
 import { Palette } from './lib/palette.ts';
-import { dropOnTerrain } from './lib/terrain-drops.ts';
+import { terrainDropInstance } from './lib/terrain-drops.ts';
 import { heightSamples } from './lib/terrain-grid.ts';
 import { bowlTerrain } from './lib/terrain-heights.ts';
 
@@ -44,26 +44,6 @@ export const scenario: ScenarioDefinition = {
       color: Palette.terrain,
       name: 'terrain',
     });
-    let dropped = 0;
-    return {
-      spawnPoint(playerIndex: number) {
-        const x = ((playerIndex % 4) - 1.5) * 1.5;
-        const z = (Math.floor(playerIndex / 4) % 4) * 1.5 - 2;
-        return { x, y: heightAt(x, z) + 0.5, z };
-      },
-      onTick(c: ScenarioContext) {
-        for (let i = 0; i < p.spawnPerTick && dropped < p.bodyCount; i++) {
-          dropOnTerrain(c, heightAt, extent * 0.7, 3, 0.35, `roller ${dropped}`);
-          dropped++;
-        }
-      },
-      saveState() {
-        return [dropped];
-      },
-      restoreState(state: readonly number[]) {
-        if (state.length !== 1 || !Number.isInteger(state[0]) || state[0] < 0) throw new Error(`height-field: bad saved state ${JSON.stringify(state)}`);
-        dropped = state[0];
-      },
-    };
+    return terrainDropInstance('height-field', heightAt, extent * 0.7, 0.5, p.spawnPerTick, p.bodyCount);
   },
 };
