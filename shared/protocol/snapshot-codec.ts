@@ -71,31 +71,38 @@ export function encodeSnapshot(format: SnapshotFormat, frame: QuantizedFrame, ba
   return w.finish();
 }
 
-function encodeBodies(format: SnapshotFormat, w: BitWriter, frame: QuantizedFrame, base: QuantizedFrame): void {
-  const cur = frame.bodies;
-  const old = base.bodies;
-  const removed: number[] = [];
-  const spawnedIds: number[] = [];
-  const spawnedIdx: number[] = [];
-  const changed: number[] = [];
-  const changedBase: number[] = [];
+/** How a frame's rows (sorted ids, `stride` values each) differ from the baseline's. */
+interface RowDiff {
+  /** Baseline row indices whose id is gone. */
+  removed: number[];
+  /** Ids new in the frame, and their row indices there. */
+  spawnedIds: number[];
+  spawnedIdx: number[];
+  /** Row indices (frame, baseline) of ids present in both whose values differ. */
+  changed: number[];
+  changedBase: number[];
+}
+
+/** Merges two sorted id lists and compares the rows of ids present in both. */
+function diffRows(ids: ArrayLike<number>, baseIds: ArrayLike<number>, cur: ArrayLike<number>, old: ArrayLike<number>, stride: number): RowDiff {
+  const d: RowDiff = { removed: [], spawnedIds: [], spawnedIdx: [], changed: [], changedBase: [] };
   let i = 0;
   let j = 0;
-  const n = frame.bodyIds.length;
-  const m = base.bodyIds.length;
+  const n = ids.length;
+  const m = baseIds.length;
   while (i < n || j < m) {
-    if (j >= m || (i < n && frame.bodyIds[i] < base.bodyIds[j])) {
-      spawnedIds.push(frame.bodyIds[i]);
-      spawnedIdx.push(i++);
-    } else if (i >= n || base.bodyIds[j] < frame.bodyIds[i]) {
-      removed.push(j++);
+    if (j >= m || (i < n && ids[i] < baseIds[j])) {
+      d.spawnedIds.push(ids[i]);
+      d.spawnedIdx.push(i++);
+    } else if (i >= n || baseIds[j] < ids[i]) {
+      d.removed.push(j++);
     } else {
-      const a = i * BODY_Q_STRIDE;
-      const b = j * BODY_Q_STRIDE;
-      for (let f = 0; f < BODY_Q_STRIDE; f++) {
+      const a = i * stride;
+      const b = j * stride;
+      for (let f = 0; f < stride; f++) {
         if (cur[a + f] !== old[b + f]) {
-          changed.push(i);
-          changedBase.push(j);
+          d.changed.push(i);
+          d.changedBase.push(j);
           break;
         }
       }
@@ -103,6 +110,13 @@ function encodeBodies(format: SnapshotFormat, w: BitWriter, frame: QuantizedFram
       j++;
     }
   }
+  return d;
+}
+
+function encodeBodies(format: SnapshotFormat, w: BitWriter, frame: QuantizedFrame, base: QuantizedFrame): void {
+  const cur = frame.bodies;
+  const old = base.bodies;
+  const { removed, spawnedIds, spawnedIdx, changed, changedBase } = diffRows(frame.bodyIds, base.bodyIds, cur, old, BODY_Q_STRIDE);
   writeGapList(w, removed);
   writeGapList(w, spawnedIds);
   writeGapList(w, changed);
@@ -164,35 +178,7 @@ function encodeBodies(format: SnapshotFormat, w: BitWriter, frame: QuantizedFram
 function encodeCharacters(format: SnapshotFormat, w: BitWriter, frame: QuantizedFrame, base: QuantizedFrame): void {
   const cur = frame.characters;
   const old = base.characters;
-  const removed: number[] = [];
-  const spawnedIds: number[] = [];
-  const spawnedIdx: number[] = [];
-  const changed: number[] = [];
-  const changedBase: number[] = [];
-  let i = 0;
-  let j = 0;
-  const n = frame.playerIds.length;
-  const m = base.playerIds.length;
-  while (i < n || j < m) {
-    if (j >= m || (i < n && frame.playerIds[i] < base.playerIds[j])) {
-      spawnedIds.push(frame.playerIds[i]);
-      spawnedIdx.push(i++);
-    } else if (i >= n || base.playerIds[j] < frame.playerIds[i]) {
-      removed.push(j++);
-    } else {
-      const a = i * CHARACTER_Q_STRIDE;
-      const b = j * CHARACTER_Q_STRIDE;
-      for (let f = 0; f < CHARACTER_Q_STRIDE; f++) {
-        if (cur[a + f] !== old[b + f]) {
-          changed.push(i);
-          changedBase.push(j);
-          break;
-        }
-      }
-      i++;
-      j++;
-    }
-  }
+  const { removed, spawnedIds, spawnedIdx, changed, changedBase } = diffRows(frame.playerIds, base.playerIds, cur, old, CHARACTER_Q_STRIDE);
   writeGapList(w, removed);
   writeGapList(w, spawnedIds);
   writeGapList(w, changed);
