@@ -3,39 +3,10 @@
 
 import type { Clock, TimerHandle } from '../client/net/clock.ts';
 
-// One Clock contract for both ends: the client library defines it (browser + Node), the server implements it.
+// One Clock contract and one real clock (performance.now() + setTimeout) for both ends: the client library defines
+// them (browser + Node); the server adds the manual clock its tests drive.
 export type { Clock, TimerHandle };
-
-/** The real clock: `performance.now()` and Node timers (unref'd so they never keep a process alive on their own). */
-export class SystemClock implements Clock {
-  private nextId = 1;
-  private readonly timers = new Map<number, ReturnType<typeof setTimeout>>();
-
-  nowMs(): number {
-    return performance.now();
-  }
-
-  setTimer(delayMs: number, fn: () => void): TimerHandle {
-    const id = this.nextId++;
-    const t = setTimeout(
-      () => {
-        this.timers.delete(id);
-        fn();
-      },
-      Math.max(0, delayMs),
-    );
-    this.timers.set(id, t);
-    return { id };
-  }
-
-  clearTimer(handle: TimerHandle): void {
-    const t = this.timers.get(handle.id);
-    if (t !== undefined) {
-      clearTimeout(t);
-      this.timers.delete(handle.id);
-    }
-  }
-}
+export { RealClock as SystemClock } from '../client/net/clock.ts';
 
 interface ManualTimer {
   id: number;
