@@ -2,9 +2,8 @@
 // dropped on it coming to rest on the surface, state round trips and seed determinism.
 import { describe, expect, it } from 'vitest';
 import { scenario } from '../../scenarios/mesh-terrain.ts';
-import { expectParamsValidated, expectRestingOnSurface, expectSeedDeterminism } from '../helpers/scenario-checks.ts';
 import { ScenarioHarness } from '../helpers/scenario-harness.ts';
-import { expectSimulationReplays } from '../helpers/scenario-sim.ts';
+import { terrainSceneChecks } from '../helpers/terrain-scene-checks.ts';
 
 const SMALL = { cells: 16, bodyCount: 16, spawnPerTick: 4 };
 
@@ -23,63 +22,5 @@ describe('mesh-terrain', () => {
     }
   });
 
-  it('rejects unknown and out-of-range parameters with a clear Error', async () => {
-    await expectParamsValidated(scenario);
-  });
-
-  it('answers a downward ray everywhere on the terrain (no holes, faces up)', async () => {
-    const h = await ScenarioHarness.create(scenario, { params: SMALL });
-    try {
-      for (let x = -7.5; x <= 7.5; x += 1.25) {
-        for (let z = -7.5; z <= 7.5; z += 1.25) expect(h.world.rayDownY(x, 40, z, 80, true), `(${x}, ${z})`).not.toBeNull();
-      }
-    } finally {
-      h.destroy();
-    }
-  });
-
-  it('drops bodyCount things that come to rest on the terrain surface', async () => {
-    const h = await ScenarioHarness.create(scenario, { params: SMALL });
-    try {
-      h.run(600);
-      expect(h.dynamicBodies()).toHaveLength(SMALL.bodyCount);
-      expectRestingOnSurface(h, 1.2, 0.3);
-    } finally {
-      h.destroy();
-    }
-  });
-
-  it('places spawn points on the terrain', async () => {
-    const h = await ScenarioHarness.create(scenario, { params: SMALL });
-    try {
-      for (let i = 0; i < 8; i++) {
-        const s = h.instance.spawnPoint(i);
-        const ground = h.world.rayDownY(s.x, s.y + 5, s.z, 20, true)!;
-        expect(s.y - ground).toBeGreaterThanOrEqual(0);
-        expect(s.y - ground).toBeLessThan(0.6);
-      }
-    } finally {
-      h.destroy();
-    }
-  });
-
-  it('round-trips its scenario state and rejects a bad one', async () => {
-    const h = await ScenarioHarness.create(scenario, { params: SMALL });
-    try {
-      h.run(2);
-      expect(h.instance.saveState!()).toEqual([8]);
-      h.instance.restoreState!([3]);
-      expect(h.instance.saveState!()).toEqual([3]);
-      expect(() => h.instance.restoreState!([-1])).toThrow(/mesh-terrain: bad saved state/);
-    } finally {
-      h.destroy();
-    }
-  });
-
-  it('gives identical bodies for one seed and different ones for another', async () => {
-    await expectSeedDeterminism(scenario, SMALL, 90);
-  });
-  it('runs deterministically through the Simulation with bots, across checkpoint rollbacks', async () => {
-    await expectSimulationReplays(scenario, SMALL, 120, 2);
-  });
+  terrainSceneChecks(scenario, SMALL, 7.5);
 });
