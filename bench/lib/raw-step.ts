@@ -47,11 +47,12 @@ function floorBatch(sim: Simulation, ticks: number, characters: boolean): FloorT
     const world = sim.world;
     for (let i = 0; i < ticks; i++) {
       const t0 = performance.now();
-      if (core) {
+      let t1 = t0;
+      if (core && players.length > 0) {
         for (const p of players) applyCommand(p, p.input, core.rules, sim.tick + i); // walk velocity, jump (aim ignored)
         for (const p of players) p.controller.move(TICK_DT_SECONDS);
+        t1 = performance.now();
       }
-      const t1 = performance.now();
       world.stepFixed();
       const t2 = performance.now();
       out.push({ ms: t2 - t0, characterMs: t1 - t0 });
