@@ -166,7 +166,7 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
   const crowdAvailable = sceneAvailable(CROWD_SCENE);
   const crowd = crowdAvailable ? await runScene(CROWD_SCENE, quick ? [64, 256, 512, 1024] : [64, 128, 256, 384, 512, 640, 768, 1024], quick ? 128 : 32, quick, t, opts.log, null) : null;
   const s = stock.outcome;
-  const gcStep = s.steps.find((x) => x.clients === GC_CLIENTS);
+  const gcStep = s.steps.filter((x) => x.clients === GC_CLIENTS).at(-1); // the retry, when there was one
   const proof = stock.proof!;
   const pinned = stock.pinning;
   const botBound = s.firstMiss?.botSaturated === true;

@@ -1,5 +1,5 @@
 // The benchmark scenes, built through the public Simulation API: the 1000-body shape-rain pile (every drop landed),
-// cubes-901 with its rolling player cube, the stock 300-body rain and the crowd scene, stepped with the same records every run.
+// cubes-901 with its rolling player cube, the stock 300-body rain and the crowd scene; same records every run.
 import '../../server/physics-node.ts';
 import { getScenario, scenarioNames } from '../../scenarios/index.ts';
 import { BodyFlag } from '../../shared/physics/index.ts';

@@ -1,6 +1,6 @@
 // The clients-per-core figure's bot process: N players on the client library (client/net over Node's WebSocket), each
 // steered every tick by a scripted bot (walk, turn, sprint, jump; no firing, so the scene keeps its body count). Prints
-// {"ready"} once all are welcomed, {"window"} after SETTLE_MS, then {"report"} after WINDOW_MS, closes them and exits.
+// {"ready"} once all are welcomed, {"window"} after SETTLE_MS, then {"report"} after WINDOW_MS; it plays on until stopped.
 // Run: node bench/procs/bot-swarm.ts WS_URL CLIENTS SETTLE_MS WINDOW_MS
 import { connect, type NetClient } from '../lib/client-lib.ts';
 import { BotScript } from '../../shared/sim/bots.ts';
@@ -73,6 +73,9 @@ say({
     cpuShare: (cpu.user + cpu.system) / 1e6 / seconds,
   },
 });
-clearInterval(steer);
-for (const c of clients) c.close();
-setTimeout(() => process.exit(0), 500).unref();
+// Stay connected and playing while the server reports its side of the window (the figure then stops this process).
+setTimeout(() => {
+  clearInterval(steer);
+  for (const c of clients) c.close();
+  setTimeout(() => process.exit(0), 500).unref();
+}, 5000);

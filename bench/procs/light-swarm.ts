@@ -2,7 +2,8 @@
 // then one a second) feeding the library's ClockSync, input messages from its InputSender (newest command plus 3
 // repeats) aimed by its InputLead on the library's half-tick pump, an ack per snapshot — but only read each
 // snapshot's header instead of decoding it, so one core of bots can load a server core. Prints {"ready"}, {"window"}
-// after SETTLE_MS, {"report"} after WINDOW_MS, then exits. Run: node bench/procs/light-swarm.ts WS_URL CLIENTS SETTLE_MS WINDOW_MS [ROOMS]
+// after SETTLE_MS, {"report"} after WINDOW_MS, and plays on until stopped.
+// Run: node bench/procs/light-swarm.ts WS_URL CLIENTS SETTLE_MS WINDOW_MS [ROOMS]
 // (ROOMS 0: everyone in the default room; R > 0: client i joins room r((i mod R) + 1)).
 import WebSocket from 'ws';
 import { decodeServerMessage, DEFAULT_INPUT_REDUNDANCY, encodeClientMessage, PROTOCOL_VERSION, readSnapshotHeader, type ClientMessage } from '../../shared/protocol/index.ts';
@@ -153,7 +154,10 @@ say({
     cpuShare: (cpu.user + cpu.system) / 1e6 / seconds,
   },
 });
-clearInterval(steer);
-clearInterval(pumper);
-for (const b of bots) b.ws.close();
-setTimeout(() => process.exit(0), 500).unref();
+// Stay connected and sending while the server reports its side of the window (the figure then stops this process).
+setTimeout(() => {
+  clearInterval(steer);
+  clearInterval(pumper);
+  for (const b of bots) b.ws.close();
+  setTimeout(() => process.exit(0), 500).unref();
+}, 5000);
