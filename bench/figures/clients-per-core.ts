@@ -125,13 +125,15 @@ async function ladder(server: BenchServer, scene: Scene, rungs: readonly number[
   }
   const best = ladderResult(results);
   const passing = steps.filter((s) => s.pass && s.ticks > 0);
-  const misses = steps.filter((s) => !s.pass);
+  // The first count whose final verdict (after any retry) was a miss, and its last window.
+  const missed = [...results].filter(([, pass]) => !pass).map(([n]) => n);
+  const firstMissAt = missed.length > 0 ? Math.min(...missed) : null;
   return {
     scene,
     best,
     steps,
     cost: clientCost(passing.map((s) => ({ clients: s.clients, cpuMsPerTick: s.cpuMsPerTick }))),
-    firstMiss: misses.length > 0 ? misses.reduce((a, b) => (b.clients < a.clients ? b : a)) : null,
+    firstMiss: firstMissAt === null ? null : (steps.filter((s) => s.clients === firstMissAt).at(-1) ?? null),
   };
 }
 

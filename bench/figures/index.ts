@@ -35,7 +35,7 @@ export const FIGURES: readonly FigureSpec[] = Object.freeze([
     title: 'rooms per core',
     detailKey: 'roomsPerCoreDetail',
     headlineKeys: ['roomsPerCore'],
-    timeLimitMs: (quick: boolean) => (quick ? min(3) : min(5)),
+    timeLimitMs: (quick: boolean) => (quick ? min(3) : min(6)),
     module: 'figures/rooms-per-core.ts',
   },
   {
@@ -51,7 +51,7 @@ export const FIGURES: readonly FigureSpec[] = Object.freeze([
     title: 'replay',
     detailKey: 'replay',
     headlineKeys: ['replayRatio'],
-    timeLimitMs: (quick: boolean) => (quick ? min(3) : min(3)),
+    timeLimitMs: (quick: boolean) => (quick ? min(3) : min(5)),
     module: 'figures/replay.ts',
   },
   {
