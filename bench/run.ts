@@ -8,21 +8,36 @@ import { fileURLToPath } from 'node:url';
 import { FIGURE_NAMES, FIGURES, HEADLINE_KEYS } from './figures/index.ts';
 import { benchUsage, parseBenchArgs } from './lib/args.ts';
 import type { FigureOutput, FigureSpec } from './lib/figure.ts';
-import { renderMarkdownPage, renderTable, type FigureStatus, type MachineInfo, type PageSection } from './lib/report.ts';
+import { describeLoad, renderMarkdownPage, renderTable, type FigureStatus, type MachineInfo, type PageSection } from './lib/report.ts';
 import { allRows, assembleResults, type FigureRun } from './lib/results.ts';
 import { renderChartSvg } from './lib/svg.ts';
 
 const benchDir = fileURLToPath(new URL('.', import.meta.url));
 
-function machineInfo(): MachineInfo {
+/** /proc/loadavg, or the 1/5/15-minute load averages where the file is missing. */
+async function readLoad(): Promise<string> {
+  try {
+    return (await readFile('/proc/loadavg', 'utf8')).trim();
+  } catch {
+    return loadavg()
+      .map((v) => v.toFixed(2))
+      .join(' ');
+  }
+}
+
+async function machineInfo(): Promise<MachineInfo> {
   const cpu = cpus();
+  const loadAverage1m = Math.round(loadavg()[0] * 100) / 100;
   return {
     cpuModel: cpu[0]?.model.trim() ?? 'unknown',
     cores: cpu.length,
     nodeVersion: process.version,
     platform: `${platform()} ${release()}`,
     totalMemoryMiB: Math.round(totalmem() / 1048576),
-    loadAverage1m: Math.round(loadavg()[0] * 100) / 100,
+    loadAverage1m,
+    loadAtStart: await readLoad(),
+    loadAtEnd: null,
+    loadNote: describeLoad(cpu.length, loadAverage1m, null),
   };
 }
 
@@ -95,7 +110,7 @@ async function main(): Promise<number> {
     return 0;
   }
   const selected = FIGURES.filter((f) => (args.only.length > 0 ? args.only.includes(f.name) : !f.peersOnly || args.peers));
-  const machine = machineInfo();
+  const machine = await machineInfo();
   const startedAt = new Date().toISOString();
   const t0 = performance.now();
   process.stderr.write(`bench: ${args.quick ? 'quick' : 'full'} run of ${selected.map((f) => f.name).join(', ')} on ${machine.cores} × ${machine.cpuModel} (load ${machine.loadAverage1m})\n`);
@@ -112,6 +127,8 @@ async function main(): Promise<number> {
     await rm(scratch, { recursive: true, force: true });
   }
   const durationSeconds = (performance.now() - t0) / 1000;
+  machine.loadAtEnd = await readLoad();
+  machine.loadNote = describeLoad(machine.cores, machine.loadAverage1m, Math.round(loadavg()[0] * 100) / 100);
   const results = assembleResults({ headlineKeys: HEADLINE_KEYS, runs, machine, quick: args.quick, startedAt, durationSeconds });
   const table = renderTable(allRows(runs));
   if (args.json) {

@@ -1,14 +1,17 @@
 // Input latency: the real server (startServer: HTTP + ws on loopback, 60 Hz snapshots) in this process, one client
-// library player in another. Server side: for every input, ticks from its first arrival to the tick that applies it.
-// Client side: round trip from an input leaving the socket to its effect showing in a snapshot.
+// library player in another. Server side: for every input, ticks from its first arrival to the tick that applies it,
+// with the inputs never applied (late, dropped) kept in the distribution. Client side: round trip from an input
+// leaving the socket to its effect showing in a snapshot.
 import { fileURLToPath } from 'node:url';
 import { DEFAULT_SCENARIO } from '../../scenarios/index.ts';
+import { OfferResult } from '../../server/input-buffer.ts';
 import { silentLogger } from '../../server/logger.ts';
 import { createMetrics } from '../../server/metrics.ts';
 import { startServer } from '../../server/start-server.ts';
 import type { InputCommand } from '../../shared/sim/input.ts';
 import { runToEnd, startNode } from '../lib/child.ts';
 import type { FigureImpl, FigureOutput } from '../lib/figure.ts';
+import { latencyDistribution } from '../lib/rules.ts';
 import { round, roundSummary, summarize } from '../lib/stats.ts';
 
 const GOAL_TICKS = 1;
@@ -30,19 +33,29 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
   try {
     const room = server.game.rooms.get('default');
     if (!room) throw new Error('input latency: the server has no default room');
-    // First arrival of each (player, tick) input: the room's tick counter then (ticks applied so far) and the time.
-    // Messages repeat the last few inputs, so later copies of a tick (even after it was applied) are not arrivals.
-    const arrivals = new Map<number, Map<number, { ticksApplied: number; atMs: number }>>();
+    // First arrival of each (player, tick) input: the room's tick counter then (ticks applied so far), the time, and
+    // whether any copy was stored. Messages repeat the last few inputs, so later copies are not arrivals (but one of
+    // them may be the copy that gets stored, when the first was too far ahead).
+    const arrivals = new Map<number, Map<number, { ticksApplied: number; atMs: number; stored: boolean; counted: boolean }>>();
     let late = 0;
+    let notApplied = 0;
     const offer = room.offerInput.bind(room);
     room.offerInput = (playerId: number, tick: number, command: InputCommand) => {
+      const ticksApplied = room.sim.tick;
+      const result = offer(playerId, tick, command);
       let byPlayer = arrivals.get(tick);
       if (!byPlayer) arrivals.set(tick, (byPlayer = new Map()));
-      if (!byPlayer.has(playerId)) {
-        byPlayer.set(playerId, { ticksApplied: room.sim.tick, atMs: performance.now() });
-        if (tick < room.sim.tick) late++;
-      }
-      return offer(playerId, tick, command);
+      const a = byPlayer.get(playerId);
+      if (!a) {
+        // Its tick already ran (with the previous command repeated): this input will never be applied.
+        const tooLate = tick < ticksApplied;
+        byPlayer.set(playerId, { ticksApplied, atMs: performance.now(), stored: result === OfferResult.Accepted, counted: tooLate });
+        if (tooLate) {
+          late++;
+          notApplied++;
+        }
+      } else if (result === OfferResult.Accepted) a.stored = true;
+      return result;
     };
     const waitTicks: number[] = [];
     const waitMs: number[] = [];
@@ -51,11 +64,13 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
       const byPlayer = arrivals.get(record.tick);
       for (const c of record.commands) {
         const a = byPlayer?.get(c.playerId);
+        if (!a || a.counted) continue;
+        a.counted = true;
         // Applied by the next tick run after arrival = 1; each tick of lead the client chose adds one.
-        if (a) {
+        if (a.stored) {
           waitTicks.push(record.tick - a.ticksApplied + 1);
           waitMs.push(now - a.atMs);
-        }
+        } else notApplied++; // arrived in time, but no copy was stored (too far ahead): the tick repeated the old command
       }
       for (const t of arrivals.keys()) if (t < record.tick - 120) arrivals.delete(t);
     });
@@ -64,22 +79,24 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
     const report = JSON.parse(out.trim().split('\n').at(-1)!) as ClientReport;
     const seen = report.samples.filter((s) => s.sentMs >= 0 && s.seenMs !== null);
     if (waitTicks.length === 0 || seen.length === 0) throw new Error(`input latency: no samples (server ${waitTicks.length}, client ${seen.length} of ${report.samples.length})`);
-    const ticks = summarize(waitTicks);
+    const dist = latencyDistribution(waitTicks, notApplied);
     const ms = summarize(waitMs);
     const rtt = summarize(seen.map((s) => s.seenMs! - s.sentMs));
     const rttTicks = summarize(seen.map((s) => s.seenTick! - s.inputTick));
-    const histogram: Record<string, number> = {};
-    for (const t of waitTicks) histogram[String(t)] = (histogram[String(t)] ?? 0) + 1;
+    const lateText = (v: number | null): string => (v === null ? ' (lands on an input never applied)' : '');
     return {
-      headline: { inputLatencyTicks: round(ticks.median, 2) },
+      headline: { inputLatencyTicks: dist.median === null ? null : round(dist.median, 2) },
       detail: {
         scenario: DEFAULT_SCENARIO,
         snapshotRateHz: SNAPSHOT_RATE_HZ,
-        inputs: waitTicks.length,
-        arrivalToApplyTicks: roundSummary(ticks, 2),
-        arrivalToApplyTicksHistogram: histogram,
-        arrivalToApplyMs: roundSummary(ms, 3),
+        inputs: dist.inputs,
+        applied: dist.applied,
+        notApplied: dist.notApplied,
+        notAppliedShare: round(dist.notAppliedShare, 4),
         lateInputs: late,
+        arrivalToApplyTicks: { median: dist.median, p90: dist.p90, p99: dist.p99, max: dist.max },
+        arrivalToApplyTicksHistogram: dist.histogram,
+        arrivalToApplyMsOfApplied: roundSummary(ms, 3),
         inputToSnapshotMs: roundSummary(rtt, 2),
         inputTickToSnapshotTick: roundSummary(rttTicks, 2),
         effectSamples: seen.length,
@@ -88,8 +105,9 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
         missedInputTicks: report.missedInputTicks,
       },
       rows: [
-        { figure: 'input latency', measure: `arrival → applying tick (median of ${waitTicks.length} inputs)`, value: ticks.median, unit: 'ticks', digits: 1, goal: { op: '<=', value: GOAL_TICKS } },
-        { figure: 'input latency', measure: 'arrival → applying tick (p99)', value: ticks.p99, unit: 'ticks', digits: 1 },
+        { figure: 'input latency', measure: `arrival → applying tick (median of ${dist.inputs} inputs, late ones included)${lateText(dist.median)}`, value: dist.median, unit: 'ticks', digits: 1, goal: { op: '<=', value: GOAL_TICKS } },
+        { figure: 'input latency', measure: `arrival → applying tick (p99)${lateText(dist.p99)}`, value: dist.p99, unit: 'ticks', digits: 1 },
+        { figure: 'input latency', measure: `inputs never applied (late: their tick had run; or dropped), of ${dist.inputs}`, value: dist.notAppliedShare * 100, unit: '%', digits: 2 },
         { figure: 'input latency', measure: `input sent → effect in a snapshot, loopback (median of ${seen.length})`, value: rtt.median, unit: 'ms', digits: 1 },
         { figure: 'input latency', measure: 'input sent → effect in a snapshot (p99)', value: rtt.p99, unit: 'ms', digits: 1 },
       ],
@@ -98,8 +116,8 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
           title: 'Input latency on loopback (ms)',
           unit: 'ms',
           bars: [
-            { label: 'arrival → applied (median)', value: ms.median, series: 'ours' },
-            { label: 'arrival → applied (p99)', value: ms.p99, series: 'ours' },
+            { label: 'arrival → applied (median of applied)', value: ms.median, series: 'ours' },
+            { label: 'arrival → applied (p99 of applied)', value: ms.p99, series: 'ours' },
             { label: 'sent → seen in snapshot (median)', value: rtt.median, series: 'other' },
             { label: 'sent → seen in snapshot (p99)', value: rtt.p99, series: 'other' },
             { label: 'one tick', value: 1000 / 60, series: 'raw' },
@@ -109,6 +127,7 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
       notes: [
         `The server (startServer, ${DEFAULT_SCENARIO}, ${SNAPSHOT_RATE_HZ} Hz snapshots) runs in the figure's process; the client library (client/net, Node's WebSocket) runs in a child process on loopback.`,
         'Arrival → applying tick: 1 means the input was applied by the first tick that ran after it arrived; every tick of input lead the client chose (to absorb jitter) adds one. Counted at the first arrival of each (player, tick) input (messages repeat recent inputs).',
+        `Inputs never applied count in the distribution, ranked after the slowest applied one: ${late} arrived after their tick had run (the server repeated the previous command), ${notApplied - late} were dropped (too far ahead, no later copy stored). A quantile that lands on them has no value (n/a). The ms chart covers applied inputs only.`,
         `Sent → seen: the client toggles its Use button every ${intervalMs} ms; from the first input message carrying the new state leaving the socket to the first decoded snapshot whose own character shows it.`,
         `Client lead at the end: ${report.leadTicks} tick(s); RTT ${report.rttMs === null ? 'n/a' : report.rttMs.toFixed(2)} ms; inputs that arrived late: ${late}.`,
       ],

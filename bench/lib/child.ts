@@ -1,6 +1,6 @@
 // Child processes for the benchmarks: run the project's CLI or a bench helper under this Node, wait for output on
 // stdout or for exit (each with a time limit), and stop what was started (SIGTERM, then SIGKILL) by its own handle.
-import { spawn, type ChildProcess } from 'node:child_process';
+import { spawn, spawnSync, type ChildProcess } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
 
 /** The repository root. */
@@ -17,10 +17,23 @@ export interface Child {
   exited: Promise<number | null>;
 }
 
-/** Starts `node script args…` with this process's Node (stdout/stderr collected; stdin ignored unless piped; extra env). */
-export function startNode(script: string, args: readonly string[], opts: { stdin?: boolean; env?: Record<string, string> } = {}): Child {
+let tasksetWorks: boolean | null = null;
+
+/** Whether `taskset` can pin a process to a CPU here (it execs the command, so the child's pid stays Node's). */
+export function canPin(): boolean {
+  tasksetWorks ??= spawnSync('taskset', ['-c', '0', 'true'], { stdio: 'ignore' }).status === 0;
+  return tasksetWorks;
+}
+
+/**
+ * Starts `node script args…` with this process's Node (stdout/stderr collected; stdin ignored unless piped; extra
+ * env); `cpu` pins it to that CPU with taskset (check canPin() first).
+ */
+export function startNode(script: string, args: readonly string[], opts: { stdin?: boolean; env?: Record<string, string>; cpu?: number } = {}): Child {
   const env = opts.env ? { ...process.env, ...opts.env } : process.env;
-  const proc = spawn(process.execPath, [script, ...args], { cwd: REPO_ROOT, stdio: [opts.stdin ? 'pipe' : 'ignore', 'pipe', 'pipe'], env });
+  const argv = [script, ...args];
+  const [command, commandArgs] = opts.cpu === undefined ? [process.execPath, argv] : ['taskset', ['-c', String(opts.cpu), process.execPath, ...argv]];
+  const proc = spawn(command, commandArgs, { cwd: REPO_ROOT, stdio: [opts.stdin ? 'pipe' : 'ignore', 'pipe', 'pipe'], env });
   let out = '';
   let err = '';
   proc.stdout!.setEncoding('utf8').on('data', (d: string) => (out += d));

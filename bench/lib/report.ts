@@ -11,6 +11,22 @@ export interface MachineInfo {
   totalMemoryMiB: number;
   /** 1-minute load average when the run started (noise from other processes). */
   loadAverage1m: number;
+  /** /proc/loadavg as read when the run started and when it ended (the 1/5/15-minute averages where it is missing). */
+  loadAtStart: string;
+  loadAtEnd: string | null;
+  /** What the load means for the figures (see describeLoad). */
+  loadNote: string;
+}
+
+/** Busier than this many runnable tasks per core on average and wall-clock figures are not to be trusted. */
+export const BUSY_LOAD_PER_CORE = 0.5;
+
+/** A sentence on the machine's load over a run, from the 1-minute averages at its start and end. */
+export function describeLoad(cores: number, startLoad1m: number, endLoad1m: number | null): string {
+  const worst = Math.max(startLoad1m, endLoad1m ?? startLoad1m);
+  const text = `1-minute load ${startLoad1m.toFixed(2)} at start${endLoad1m === null ? '' : `, ${endLoad1m.toFixed(2)} at end`} on ${cores} core${cores === 1 ? '' : 's'}`;
+  if (worst > cores * BUSY_LOAD_PER_CORE) return `${text}: other work shared the machine, so wall-clock figures (tick times, clients and rooms per core) are noisy and understate what a quiet machine does; rerun at a quiet time before comparing.`;
+  return `${text}: quiet.`;
 }
 
 /** How one figure's process went. */
@@ -80,7 +96,8 @@ export function renderMarkdownPage(opts: { quick: boolean; startedAt: string; du
   const parts: string[] = [];
   parts.push('# Benchmark results', '');
   parts.push(`${opts.quick ? 'Quick run (coarse: fewer samples, shorter scenes)' : 'Full run'} started ${opts.startedAt}, took ${opts.durationSeconds.toFixed(0)} s.`);
-  parts.push(`Machine: ${m.cpuModel}, ${m.cores} cores, ${m.totalMemoryMiB} MiB, ${m.platform}, Node ${m.nodeVersion}, load average ${m.loadAverage1m.toFixed(2)} at start.`);
+  parts.push(`Machine: ${m.cpuModel}, ${m.cores} cores, ${m.totalMemoryMiB} MiB, ${m.platform}, Node ${m.nodeVersion}.`);
+  parts.push(`Load (/proc/loadavg): \`${m.loadAtStart}\` at start, \`${m.loadAtEnd ?? 'n/a'}\` at end. ${m.loadNote}`);
   parts.push('How each figure is measured: [bench/README.md](../README.md). Regenerate with `npm run bench`.', '');
   parts.push(renderMarkdownTable(opts.rows));
   for (const s of opts.sections) {

@@ -1,7 +1,7 @@
 // An in-process server for the tick-overhead figure: the real GameServer, room, client sessions, snapshot encoders and
-// input-log writer, driven tick by tick. Clients sit behind tick-scheduled links (inputs and acks arrive a fixed
-// number of ticks after they are sent); the server's part of a tick (taking arrived messages + Room.tickOnce) is
-// what `serverTick()` runs, and the clients' part (`clientTick()`) runs outside it.
+// input-log writer, driven tick by tick. Clients sit behind tick-scheduled links and send what the real client sends
+// (input messages from its InputSender with redundancy, acks, pings); the server's part of a tick (handling the
+// arrived messages + Room.tickOnce) is what `serverTick()` runs, and the clients' part (`clientTick()`) runs outside it.
 import '../../server/physics-node.ts';
 import { mkdtemp, rm } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
@@ -16,12 +16,16 @@ import { silentLogger } from '../../server/logger.ts';
 import { createMetrics } from '../../server/metrics.ts';
 import type { Room, RoomRecorder } from '../../server/room.ts';
 import type { RoomFactory, RoomSimulationBuild } from '../../server/room-manager.ts';
-import { decodeServerMessage, encodeClientMessage, PROTOCOL_VERSION, readSnapshotHeader } from '../../shared/protocol/index.ts';
+import { CharacterController } from '../../shared/physics/index.ts';
+import { decodeServerMessage, DEFAULT_INPUT_REDUNDANCY, encodeClientMessage, PROTOCOL_VERSION, readSnapshotHeader } from '../../shared/protocol/index.ts';
 import { BotScript } from '../../shared/sim/bots.ts';
 import { Simulation } from '../../shared/sim/simulation.ts';
+import { InputSender } from './client-lib.ts';
 import { wsFrameBytes } from './wire.ts';
 
 const TICK_MS = 1000 / 60;
+/** The client library's steady ping interval (its initial burst of quick pings happens during the join, unmeasured). */
+const PING_INTERVAL_MS = 1000;
 
 /**
  * Time for the server's rate limiters, advanced by the rig one tick at a time. Its timers never fire: the rig runs
@@ -80,10 +84,15 @@ interface RigClient {
   link: RigLink;
   session: ClientSession;
   playerId: number;
+  /** The client library's own input sender: one message per tick carrying the newest commands (redundancy 4). */
+  sender: InputSender;
+  nextPingMs: number;
   /** Client→server messages by the tick they arrive at. */
   inbound: Map<number, Uint8Array[]>;
   bytesDown: number;
   snapshots: number;
+  /** Size on the wire of the welcome the server sent (WebSocket framing included). */
+  welcomeBytes: number;
 }
 
 /** Rig options. */
@@ -104,6 +113,8 @@ export interface ServerRigOptions {
 export interface TickParts {
   messagesIn: number;
   simStep: number;
+  /** Character updates (CharacterController.move) inside simStep. */
+  characters: number;
   physicsStep: number;
   stateHash: number;
   snapshots: number;
@@ -122,11 +133,13 @@ export interface ServerRig {
   takeParts(): TickParts;
   /** Bytes sent to each client (mean, WebSocket framing included) and snapshots received, since the start. */
   downstream(): { bytesPerClient: number; snapshotsPerClient: number };
+  /** Size on the wire of the first client's welcome. */
+  welcomeBytes(): number;
   close(): Promise<void>;
 }
 
 function zeroParts(): TickParts {
-  return { messagesIn: 0, simStep: 0, physicsStep: 0, stateHash: 0, snapshots: 0, events: 0 };
+  return { messagesIn: 0, simStep: 0, characters: 0, physicsStep: 0, stateHash: 0, snapshots: 0, events: 0 };
 }
 
 /** Wraps obj[name] so its time is added to parts[key]. Measurement only: arguments and results pass through. */
@@ -139,6 +152,23 @@ function timeMethod<T extends object>(obj: T, name: keyof T & string, parts: { c
     } finally {
       parts.current[key] += performance.now() - t0;
     }
+  };
+}
+
+/** Times every CharacterController.move() into parts[key] (the rig's characters are made inside Simulation.step). */
+function timeCharacterMoves(parts: { current: TickParts }): () => void {
+  const proto = CharacterController.prototype;
+  const original = proto.move;
+  proto.move = function timedMove(this: CharacterController, dtSeconds: number): void {
+    const t0 = performance.now();
+    try {
+      original.call(this, dtSeconds);
+    } finally {
+      parts.current.characters += performance.now() - t0;
+    }
+  };
+  return () => {
+    proto.move = original;
   };
 }
 
@@ -201,6 +231,7 @@ export async function startServerRig(opts: ServerRigOptions): Promise<ServerRig>
   timeMethod(theSim, 'step', parts, 'simStep');
   timeMethod(theSim.world, 'stepFixed', parts, 'physicsStep');
   timeMethod(theSim, 'stateHash', parts, 'stateHash');
+  const untimeCharacters = timeCharacterMoves(parts);
 
   const clients: RigClient[] = [];
   for (let i = 0; i < opts.clients; i++) {
@@ -212,7 +243,20 @@ export async function startServerRig(opts: ServerRigOptions): Promise<ServerRig>
     if (session.player === 0) throw new Error(`server rig: client ${i + 1} was not welcomed`);
     timeMethod(session, 'deliverFrame', parts, 'snapshots');
     timeMethod(session, 'deliverEvents', parts, 'events');
-    clients.push({ link, session, playerId: session.player, inbound: new Map(), bytesDown: 0, snapshots: 0 });
+    const welcome = link.outbox.length > 0 ? decodeServerMessage(link.outbox[0]) : null;
+    if (!welcome?.ok || welcome.message.type !== 'welcome') throw new Error(`server rig: client ${i + 1} got no welcome first`);
+    clients.push({
+      link,
+      session,
+      playerId: session.player,
+      sender: new InputSender({ redundancy: DEFAULT_INPUT_REDUNDANCY }),
+      // Steady pings spread over the second, as clients that joined at different times would be.
+      nextPingMs: clock.nowMs() + (i * PING_INTERVAL_MS) / opts.clients,
+      inbound: new Map(),
+      bytesDown: 0,
+      snapshots: 0,
+      welcomeBytes: wsFrameBytes(link.outbox[0].length),
+    });
   }
   room.tickClock.stop();
   // Bots with the same player ids the room gave out (1…N in join order); their join records are the room's business.
@@ -242,6 +286,7 @@ export async function startServerRig(opts: ServerRigOptions): Promise<ServerRig>
     async clientTick(): Promise<void> {
       const now = theSim.tick; // the tick the server runs next
       clock.advance(TICK_MS);
+      const nowMs = clock.nowMs();
       const record = bots.next();
       const byPlayer = new Map(record.commands.map((c) => [c.playerId, c.input]));
       for (const c of clients) {
@@ -257,7 +302,15 @@ export async function startServerRig(opts: ServerRigOptions): Promise<ServerRig>
           } else if (m.message.type === 'bye') throw new Error(`server rig: client ${c.playerId} was sent away: ${m.message.message}`);
         }
         const input = byPlayer.get(c.playerId);
-        if (input) queue(c, now + opts.oneWayTicks, encodeClientMessage({ type: 'input', firstTick: now + lead, commands: [input] }));
+        if (input) {
+          c.sender.setCommand(input);
+          const message = c.sender.update(now + lead);
+          if (message) queue(c, now + opts.oneWayTicks, encodeClientMessage(message));
+        }
+        if (nowMs >= c.nextPingMs) {
+          queue(c, now + opts.oneWayTicks, encodeClientMessage({ type: 'ping', clientTimeMs: nowMs }));
+          c.nextPingMs += PING_INTERVAL_MS;
+        }
       }
       await new Promise((r) => setImmediate(r));
     },
@@ -270,7 +323,9 @@ export async function startServerRig(opts: ServerRigOptions): Promise<ServerRig>
       const n = Math.max(1, clients.length);
       return { bytesPerClient: clients.reduce((s, c) => s + c.bytesDown, 0) / n, snapshotsPerClient: clients.reduce((s, c) => s + c.snapshots, 0) / n };
     },
+    welcomeBytes: () => clients[0]?.welcomeBytes ?? 0,
     async close(): Promise<void> {
+      untimeCharacters();
       await server.close('bench done');
       await rm(logDir, { recursive: true, force: true });
     },

@@ -119,3 +119,31 @@ export function timeMs(fn: () => void): number {
   fn();
   return performance.now() - t0;
 }
+
+/** A straight line through points: y ≈ intercept + slope · x, with the share of variance it explains (r²). */
+export interface LinearFit {
+  slope: number;
+  intercept: number;
+  r2: number;
+  points: number;
+}
+
+/** Ordinary least squares of ys on xs (at least two distinct xs). */
+export function linearFit(xs: readonly number[], ys: readonly number[]): LinearFit {
+  checkSamples(xs, 'linearFit');
+  checkSamples(ys, 'linearFit');
+  if (xs.length !== ys.length) throw new Error(`linearFit: ${xs.length} xs but ${ys.length} ys`);
+  const mx = mean(xs);
+  const my = mean(ys);
+  let sxx = 0;
+  let sxy = 0;
+  let syy = 0;
+  for (let i = 0; i < xs.length; i++) {
+    sxx += (xs[i] - mx) * (xs[i] - mx);
+    sxy += (xs[i] - mx) * (ys[i] - my);
+    syy += (ys[i] - my) * (ys[i] - my);
+  }
+  if (sxx === 0) throw new Error('linearFit: needs at least two distinct x values');
+  const slope = sxy / sxx;
+  return { slope, intercept: my - slope * mx, r2: syy === 0 ? 1 : (sxy * sxy) / (sxx * syy), points: xs.length };
+}

@@ -1,11 +1,16 @@
-// The clients-per-core figure's server process: startServer (HTTP + ws on loopback, the scene's default room, 30 Hz
-// snapshots) with the connection caps lifted, every room tick timed. Prints {"wsUrl"} when listening; stdin commands:
-// "mark" starts a measurement window, "report" prints the window's tick times and snapshot counts as one JSON line.
-// Run: node bench/procs/bench-server.ts SCENARIO PARAMS_JSON SNAPSHOT_HZ MAX_CLIENTS
+// The server process of the clients-per-core and rooms-per-core figures: startServer (HTTP + ws on loopback, the
+// scene's default room) with the connection and room caps lifted, every room's ticks timed (wall and this thread's
+// CPU), GC pauses observed, the process's own CPU time counted. Prints {"wsUrl"} when listening. Stdin commands:
+// "rooms N" opens rooms r1…rN of the same scene (prints {"rooms"}); "mark" starts a measurement window; "report"
+// prints the window as one JSON line. Run: node bench/procs/bench-server.ts SCENARIO PARAMS_JSON SNAPSHOT_HZ MAX_CLIENTS
+import { PerformanceObserver } from 'node:perf_hooks';
 import { createInterface } from 'node:readline';
+import type { Room } from '../../server/room.ts';
 import { silentLogger } from '../../server/logger.ts';
 import { createMetrics } from '../../server/metrics.ts';
 import { startServer } from '../../server/start-server.ts';
+import { gcPausePerTick, maxGap, type GcPause } from '../lib/rules.ts';
+import { quantile, round } from '../lib/stats.ts';
 
 const [scenario, paramsJson, rateArg, maxArg] = process.argv.slice(2);
 const snapshotRateHz = Number(rateArg);
@@ -14,72 +19,154 @@ if (!scenario || !paramsJson || !Number.isInteger(snapshotRateHz) || !Number.isI
   process.stderr.write('usage: node bench/procs/bench-server.ts SCENARIO PARAMS_JSON SNAPSHOT_HZ MAX_CLIENTS\n');
   process.exit(2);
 }
+const params = JSON.parse(paramsJson) as Record<string, number>;
+const MAX_ROOMS = 64;
 
 const metrics = createMetrics({ processMetrics: false });
 const server = await startServer({
   port: 0,
   host: '127.0.0.1',
   scenario,
-  params: JSON.parse(paramsJson) as Record<string, number>,
+  params,
   snapshotRateHz,
   maxClients,
   maxConnections: maxClients + 16,
+  maxRooms: MAX_ROOMS + 1,
+  emptyRoomGraceMs: 3_600_000, // rooms of the ladder stay open between steps
   logger: silentLogger(),
   metrics,
 });
-const room = server.game.rooms.get('default');
-if (!room) throw new Error('bench-server: no default room');
 
-let tickMs: number[] = [];
-const tickOnce = room.tickOnce.bind(room);
-room.tickOnce = () => {
-  const t0 = performance.now();
-  tickOnce();
-  tickMs.push(performance.now() - t0);
-};
+interface TickLog {
+  room: Room;
+  startsMs: number[];
+  wallMs: number[];
+  cpuMs: number[];
+}
+const logs: TickLog[] = [];
+
+/** Times every tick of a room: its start, its wall time and this thread's CPU time inside it. */
+function instrument(room: Room): void {
+  const log: TickLog = { room, startsMs: [], wallMs: [], cpuMs: [] };
+  logs.push(log);
+  const tickOnce = room.tickOnce.bind(room);
+  room.tickOnce = () => {
+    const c0 = process.threadCpuUsage();
+    const t0 = performance.now();
+    tickOnce();
+    const wall = performance.now() - t0;
+    const cpu = process.threadCpuUsage(c0);
+    log.startsMs.push(t0);
+    log.wallMs.push(wall);
+    log.cpuMs.push((cpu.user + cpu.system) / 1000);
+  };
+}
+const defaultRoom = server.game.rooms.get('default');
+if (!defaultRoom) throw new Error('bench-server: no default room');
+instrument(defaultRoom);
+
+const pauses: GcPause[] = [];
+const gcObserver = new PerformanceObserver((list) => {
+  for (const e of list.getEntries()) pauses.push({ startTime: e.startTime, duration: e.duration });
+});
+gcObserver.observe({ entryTypes: ['gc'] });
 
 async function counter(c: { get(): Promise<{ values: Array<{ value: number }> }> }): Promise<number> {
   return (await c.get()).values.reduce((s, v) => s + v.value, 0);
 }
 
-async function counters(): Promise<{ sent: number; skipped: number; ticksSkipped: number; overruns: number }> {
+async function counters(): Promise<Record<'sent' | 'skipped' | 'ticksSkipped' | 'messagesIn' | 'bytesIn' | 'bytesOut', number>> {
   return {
     sent: await counter(metrics.snapshotsSent),
     skipped: await counter(metrics.snapshotsSkipped),
     ticksSkipped: await counter(metrics.ticksSkipped),
-    overruns: await counter(metrics.tickOverruns),
+    messagesIn: await counter(metrics.messagesReceived),
+    bytesIn: await counter(metrics.bytesReceived),
+    bytesOut: await counter(metrics.bytesSent),
   };
 }
 
+const summary = (xs: number[]): { p50: number; p99: number; max: number } | null =>
+  xs.length === 0 ? null : { p50: round(quantile(xs, 0.5), 3), p99: round(quantile(xs, 0.99), 3), max: round(Math.max(...xs), 3) };
+
 let mark = { atMs: performance.now(), cpu: process.cpuUsage(), ...(await counters()) };
+
+async function openRooms(n: number): Promise<string[]> {
+  if (!Number.isInteger(n) || n < 0 || n > MAX_ROOMS) throw new Error(`bench-server: rooms must be in [0, ${MAX_ROOMS}], got ${n}`);
+  const ids: string[] = [];
+  for (let i = 1; i <= n; i++) {
+    const id = `r${i}`;
+    ids.push(id);
+    if (server.game.rooms.get(id)) continue;
+    instrument(await server.game.rooms.create(id, scenario, params));
+  }
+  return ids;
+}
+
+async function report(): Promise<unknown> {
+  const now = await counters();
+  const endMs = performance.now();
+  const cpu = process.cpuUsage(mark.cpu);
+  const seconds = (endMs - mark.atMs) / 1000;
+  const perTickGc = gcPausePerTick(mark.atMs, endMs, pauses);
+  const windowPauses = pauses.filter((p) => p.startTime >= mark.atMs && p.startTime < endMs);
+  return {
+    seconds,
+    cpuMs: (cpu.user + cpu.system) / 1000,
+    cpuShare: (cpu.user + cpu.system) / 1e6 / seconds,
+    gc: {
+      pauses: windowPauses.length,
+      totalMs: round(windowPauses.reduce((s, p) => s + p.duration, 0), 3),
+      maxMs: round(windowPauses.reduce((m, p) => Math.max(m, p.duration), 0), 3),
+      perTickP99Ms: round(quantile(perTickGc, 0.99), 3),
+    },
+    snapshotsSent: now.sent - mark.sent,
+    snapshotsSkipped: now.skipped - mark.skipped,
+    ticksSkipped: now.ticksSkipped - mark.ticksSkipped,
+    messagesReceived: now.messagesIn - mark.messagesIn,
+    bytesReceived: now.bytesIn - mark.bytesIn,
+    bytesSent: now.bytesOut - mark.bytesOut,
+    rooms: logs
+      .filter((l) => l.startsMs.length > 0 || l.room.clientCount > 0)
+      .map((l) => ({
+        id: l.room.id,
+        clients: l.room.clientCount,
+        bodies: l.room.info().bodies,
+        ticks: l.startsMs.length,
+        cpuMsTotal: round(l.cpuMs.reduce((s, v) => s + v, 0), 3),
+        tickWallMs: summary(l.wallMs),
+        tickCpuMs: summary(l.cpuMs),
+        maxGapMs: maxGap(l.startsMs) === null ? null : round(maxGap(l.startsMs)!, 3),
+      })),
+  };
+}
+
+const say = (obj: unknown): void => void process.stdout.write(`${JSON.stringify(obj)}\n`);
 const lines = createInterface({ input: process.stdin });
 lines.on('line', (line) => {
   void (async () => {
-    if (line === 'mark') {
-      tickMs = [];
-      mark = { atMs: performance.now(), cpu: process.cpuUsage(), ...(await counters()) };
-    } else if (line === 'report') {
-      const now = await counters();
-      const cpu = process.cpuUsage(mark.cpu);
-      const seconds = (performance.now() - mark.atMs) / 1000;
-      process.stdout.write(
-        `${JSON.stringify({
-          report: {
-            seconds,
-            tickMs,
-            clients: room.clientCount,
-            bodies: room.info().bodies,
-            snapshotsSent: now.sent - mark.sent,
-            snapshotsSkipped: now.skipped - mark.skipped,
-            ticksSkipped: now.ticksSkipped - mark.ticksSkipped,
-            overruns: now.overruns - mark.overruns,
-            cpuShare: (cpu.user + cpu.system) / 1e6 / seconds,
-          },
-        })}\n`,
-      );
+    try {
+      const [cmd, arg] = line.trim().split(/\s+/);
+      if (cmd === 'rooms') say({ rooms: await openRooms(Number(arg)) });
+      else if (cmd === 'mark') {
+        for (const l of logs) {
+          l.startsMs = [];
+          l.wallMs = [];
+          l.cpuMs = [];
+        }
+        pauses.length = 0;
+        mark = { atMs: performance.now(), cpu: process.cpuUsage(), ...(await counters()) };
+        say({ marked: true });
+      } else if (cmd === 'report') say({ report: await report() });
+    } catch (error) {
+      say({ error: error instanceof Error ? error.message : String(error) });
     }
   })();
 });
-lines.on('close', () => void server.close('bench done').then(() => process.exit(0)));
-process.on('SIGTERM', () => void server.close('bench done').then(() => process.exit(0)));
-process.stdout.write(`${JSON.stringify({ wsUrl: server.wsUrl })}\n`);
+const stop = (): void => {
+  gcObserver.disconnect();
+  void server.close('bench done').then(() => process.exit(0));
+};
+lines.on('close', stop);
+process.on('SIGTERM', stop);
+say({ wsUrl: server.wsUrl });

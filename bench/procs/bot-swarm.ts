@@ -1,8 +1,8 @@
 // The clients-per-core figure's bot process: N players on the client library (client/net over Node's WebSocket), each
 // steered every tick by a scripted bot (walk, turn, sprint, jump; no firing, so the scene keeps its body count). Prints
-// {"ready"} once all are welcomed, {"window"} after SETTLE_MS, then {"report"} after WINDOW_MS, closes them and exits.
+// {"ready"} once all are welcomed, {"window"} after SETTLE_MS, then {"report"} after WINDOW_MS; it plays on until stopped.
 // Run: node bench/procs/bot-swarm.ts WS_URL CLIENTS SETTLE_MS WINDOW_MS
-import { connect, type NetClient } from '../../client/net/index.ts';
+import { connect, type NetClient } from '../lib/client-lib.ts';
 import { BotScript } from '../../shared/sim/bots.ts';
 
 const [url, nArg, settleArg, windowArg] = process.argv.slice(2);
@@ -36,19 +36,21 @@ const steer = setInterval(() => {
   for (let i = 0; i < record.commands.length; i++) clients[i].setInput(record.commands[i].input);
 }, 1000 / 60);
 
-const totals = (): { snapshots: number; failed: number; bytesIn: number; closed: number } => {
+const totals = (): { snapshots: number; failed: number; bytesIn: number; bytesOut: number; closed: number } => {
   let snapshots = 0;
   let failed = 0;
   let bytesIn = 0;
+  let bytesOut = 0;
   let closed = 0;
   for (const c of clients) {
     const s = c.stats();
     snapshots += s.snapshots;
     failed += s.snapshotsFailed;
     bytesIn += s.bytesIn;
+    bytesOut += s.bytesOut;
     if (c.state === 'closed') closed++;
   }
-  return { snapshots, failed, bytesIn, closed };
+  return { snapshots, failed, bytesIn, bytesOut, closed };
 };
 
 await new Promise((r) => setTimeout(r, settleMs));
@@ -65,11 +67,15 @@ say({
     snapshotsPerClientPerSecond: (end.snapshots - start.snapshots) / n / seconds,
     failedSnapshots: end.failed - start.failed,
     kbpsPerClient: ((end.bytesIn - start.bytesIn) * 8) / 1000 / n / seconds,
+    kbpsUpPerClient: ((end.bytesOut - start.bytesOut) * 8) / 1000 / n / seconds,
     closedClients: end.closed,
     protocolErrors,
     cpuShare: (cpu.user + cpu.system) / 1e6 / seconds,
   },
 });
-clearInterval(steer);
-for (const c of clients) c.close();
-setTimeout(() => process.exit(0), 500).unref();
+// Stay connected and playing while the server reports its side of the window (the figure then stops this process).
+setTimeout(() => {
+  clearInterval(steer);
+  for (const c of clients) c.close();
+  setTimeout(() => process.exit(0), 500).unref();
+}, 5000);

@@ -2,7 +2,7 @@
 // It toggles the Use button every interval, notes when the first input message carrying the new state leaves (a
 // wrapped transport) and when a snapshot first shows it on its own character; prints the samples as one JSON line.
 // Run: node bench/procs/latency-client.ts WS_URL TOGGLES INTERVAL_MS
-import { connect, webSocketTransport, type TransportFactory } from '../../client/net/index.ts';
+import { connect, webSocketTransport, type TransportFactory } from '../lib/client-lib.ts';
 import { ClientOpcode, unpackFrame } from '../../shared/protocol/index.ts';
 import { Button, NEUTRAL_INPUT } from '../../shared/sim/input.ts';
 

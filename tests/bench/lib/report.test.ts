@@ -2,7 +2,7 @@
 // markdown escaping, and each figure's charts, notes and failures on the page.
 import { describe, expect, it } from 'vitest';
 import type { ReportRow } from '../../../bench/lib/figure.ts';
-import { formatGoal, formatRowValue, renderMarkdownPage, renderMarkdownTable, renderTable } from '../../../bench/lib/report.ts';
+import { describeLoad, formatGoal, formatRowValue, renderMarkdownPage, renderMarkdownTable, renderTable } from '../../../bench/lib/report.ts';
 
 const rows: ReportRow[] = [
   { figure: 'tick overhead', measure: 'median ratio, 16 clients', value: 1.234, unit: '×', digits: 2, goal: { op: '<=', value: 1.1 } },
@@ -11,7 +11,7 @@ const rows: ReportRow[] = [
   { figure: 'determinism cost', measure: 'hash | per tick', value: 0.5, unit: 'ms', digits: 3 },
 ];
 
-const machine = { cpuModel: 'Test CPU', cores: 2, nodeVersion: 'v24.0.0', platform: 'linux', totalMemoryMiB: 1024, loadAverage1m: 0.5 };
+const machine = { cpuModel: 'Test CPU', cores: 2, nodeVersion: 'v24.0.0', platform: 'linux', totalMemoryMiB: 1024, loadAverage1m: 0.5, loadAtStart: '0.50 0.40 0.30 1/90 123', loadAtEnd: '3.10 1.20 0.60 2/95 456', loadNote: 'busy' };
 
 describe('report', () => {
   it('marks each goal met or MISSED, and unknown when there is no value', () => {
@@ -61,9 +61,16 @@ describe('report', () => {
     expect(page).toContain('Quick run');
     expect(page).toContain('took 61 s');
     expect(page).toContain('Test CPU, 2 cores');
+    expect(page).toContain('`0.50 0.40 0.30 1/90 123` at start, `3.10 1.20 0.60 2/95 456` at end. busy');
     expect(page).toContain('![bandwidth](bandwidth.svg)');
     expect(page).toContain('- acks after 100 ms');
     expect(page).toContain('**failed**: ran past its limit');
     expect(page.endsWith('\n')).toBe(true);
+  });
+
+  it('calls a run quiet only while the load stays under half a task per core at start and end', () => {
+    expect(describeLoad(2, 0.4, 0.9)).toBe('1-minute load 0.40 at start, 0.90 at end on 2 cores: quiet.');
+    expect(describeLoad(2, 0.4, 2.5)).toMatch(/^1-minute load 0\.40 at start, 2\.50 at end on 2 cores: other work shared the machine/);
+    expect(describeLoad(1, 0.7, null)).toMatch(/^1-minute load 0\.70 at start on 1 core: other work/);
   });
 });

@@ -12,7 +12,7 @@ const output = (headline: Record<string, number | null>): FigureOutput => ({
   charts: [],
   notes: ['a note'],
 });
-const machine = { cpuModel: 'cpu', cores: 2, nodeVersion: 'v24', platform: 'linux', totalMemoryMiB: 1, loadAverage1m: 0 };
+const machine = { cpuModel: 'cpu', cores: 2, nodeVersion: 'v24', platform: 'linux', totalMemoryMiB: 1, loadAverage1m: 0, loadAtStart: '0 0 0 1/1 1', loadAtEnd: null, loadNote: 'quiet' };
 
 describe('results', () => {
   const runs: FigureRun[] = [

@@ -1,7 +1,7 @@
 // Tests for the bench's sample statistics: quantiles by linear interpolation, summaries, ratios, rounding, and the
 // alternating A/B batch order that spreads machine noise over both sides.
 import { describe, expect, it } from 'vitest';
-import { alternate, mean, median, quantile, ratio, round, summarize, sum } from '../../../bench/lib/stats.ts';
+import { alternate, linearFit, mean, median, quantile, ratio, round, summarize, sum } from '../../../bench/lib/stats.ts';
 
 describe('stats', () => {
   it('takes the middle value as the median of an odd count and the mean of the middle two of an even count', () => {
@@ -69,5 +69,19 @@ describe('stats', () => {
       (i) => void order.push(`B${i}`),
     );
     expect(order).toEqual(['A0', 'B0', 'B1', 'A1']);
+  });
+  it('fits a least-squares line and says how much of the variance it explains', () => {
+    const exact = linearFit([1, 16, 64], [0.5 + 0.01, 0.5 + 0.16, 0.5 + 0.64]);
+    expect(exact.slope).toBeCloseTo(0.01, 12);
+    expect(exact.intercept).toBeCloseTo(0.5, 12);
+    expect(exact.r2).toBeCloseTo(1, 12);
+    const noisy = linearFit([0, 1, 2, 3], [0, 2, 1, 3]);
+    expect(noisy.slope).toBeCloseTo(0.8, 12);
+    expect(noisy.r2).toBeLessThan(1);
+  });
+
+  it('refuses a line through a single x value or mismatched lists', () => {
+    expect(() => linearFit([2, 2], [1, 3])).toThrow(/two distinct x/);
+    expect(() => linearFit([1, 2], [1])).toThrow(/2 xs but 1 ys/);
   });
 });

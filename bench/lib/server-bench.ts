@@ -1,0 +1,107 @@
+// Drives the instrumented server process (procs/bench-server.ts) against a bot swarm in another process: the server
+// pinned to one CPU and the bots to another where taskset allows, one measurement window per swarm, reports parsed.
+import { cpus } from 'node:os';
+import { fileURLToPath } from 'node:url';
+import { canPin, nextJson, sendLine, startNode, stopChild, type Child } from './child.ts';
+import type { Scene } from './scenes.ts';
+
+const SERVER = fileURLToPath(new URL('../procs/bench-server.ts', import.meta.url));
+const SWARMS = {
+  light: fileURLToPath(new URL('../procs/light-swarm.ts', import.meta.url)),
+  real: fileURLToPath(new URL('../procs/bot-swarm.ts', import.meta.url)),
+} as const;
+
+/** Which swarm: the light one (protocol-exact, snapshots not decoded) or client-library players. */
+export type SwarmKind = keyof typeof SWARMS;
+
+/** A tick-time summary from the server (ms). */
+export interface TickSummary {
+  p50: number;
+  p99: number;
+  max: number;
+}
+
+/** One room in a server report. */
+export interface RoomReport {
+  id: string;
+  clients: number;
+  bodies: number;
+  ticks: number;
+  cpuMsTotal: number;
+  tickWallMs: TickSummary | null;
+  tickCpuMs: TickSummary | null;
+  maxGapMs: number | null;
+}
+
+/** The server's view of one window. */
+export interface ServerReport {
+  seconds: number;
+  /** The server process's own CPU time in the window (every thread: main, GC helpers, libuv). */
+  cpuMs: number;
+  cpuShare: number;
+  gc: { pauses: number; totalMs: number; maxMs: number; perTickP99Ms: number };
+  snapshotsSent: number;
+  snapshotsSkipped: number;
+  ticksSkipped: number;
+  messagesReceived: number;
+  bytesReceived: number;
+  bytesSent: number;
+  rooms: RoomReport[];
+}
+
+/** The bots' view of one window. */
+export interface SwarmReport {
+  clients: number;
+  seconds: number;
+  snapshotsPerClientPerSecond: number;
+  kbpsPerClient: number;
+  kbpsUpPerClient: number;
+  closedClients: number;
+  protocolErrors: number;
+  cpuShare: number;
+}
+
+/** A running server process. */
+export interface BenchServer {
+  child: Child;
+  wsUrl: string;
+  /** CPUs the server and the bots are pinned to; null when unpinned (no taskset, or one CPU). */
+  pinning: { server: number; bots: number } | null;
+}
+
+/** Starts the server process on a scene (pinned to CPU 0 when taskset and a second CPU exist). */
+export async function startBenchServer(scene: Scene, snapshotRateHz: number, maxClients: number): Promise<BenchServer> {
+  const pinning = cpus().length >= 2 && canPin() ? { server: 0, bots: 1 } : null;
+  const child = startNode(SERVER, [scene.scenario, JSON.stringify(scene.params), String(snapshotRateHz), String(maxClients)], { stdin: true, cpu: pinning?.server });
+  const wsUrl = await nextJson<string>(child, 'wsUrl', 60_000);
+  return { child, wsUrl, pinning };
+}
+
+/** Opens rooms r1…rN of the server's scene (rooms already open are kept). */
+export async function openRooms(server: BenchServer, n: number): Promise<string[]> {
+  sendLine(server.child, `rooms ${n}`);
+  return nextJson<string[]>(server.child, 'rooms', 60_000 + n * 2000);
+}
+
+/** Runs one swarm of `clients` bots (spread over rooms r1…rN when `rooms` > 0): settle, then one measured window. */
+export async function measureWindow(server: BenchServer, kind: SwarmKind, clients: number, settleMs: number, windowMs: number, rooms = 0): Promise<{ server: ServerReport; bots: SwarmReport }> {
+  const args = [server.wsUrl, String(clients), String(settleMs), String(windowMs), ...(kind === 'light' ? [String(rooms)] : [])];
+  if (kind === 'real' && rooms > 0) throw new Error('measureWindow: the client-library swarm only joins the default room');
+  const swarm = startNode(SWARMS[kind], args, { cpu: server.pinning?.bots });
+  try {
+    await nextJson<number>(swarm, 'ready', 60_000 + clients * 200);
+    await nextJson<boolean>(swarm, 'window', settleMs + 30_000);
+    sendLine(server.child, 'mark');
+    await nextJson<boolean>(server.child, 'marked', 30_000);
+    const bots = await nextJson<SwarmReport>(swarm, 'report', windowMs + 30_000);
+    sendLine(server.child, 'report');
+    return { server: await nextJson<ServerReport>(server.child, 'report', 30_000), bots };
+  } finally {
+    await stopChild(swarm);
+  }
+}
+
+/** Stops the server process. */
+export async function stopBenchServer(server: BenchServer): Promise<void> {
+  await stopChild(server.child);
+}
