@@ -1,6 +1,6 @@
-// Headless scripted bots over the network: N clients of the client library (client/net) join a server, each driven
+// Headless scripted bots over the network: N clients of the client library (sdk/) join a server, each driven
 // by its own seeded BotScript (walk, strafe, turn, sprint, jump, fire) at 60 commands per second, and report traffic.
-import { connect, type NetClient, type TransportFactory } from '../client/net/index.ts';
+import { connect, type NetClient, type TransportFactory } from '../sdk/index.ts';
 import { BotScript } from '../shared/sim/bots.ts';
 import { NEUTRAL_INPUT } from '../shared/sim/input.ts';
 import { SystemClock, type Clock, type TimerHandle } from './clock.ts';

@@ -1,12 +1,12 @@
 // Time sources for the server: a monotonic clock with timers (system) and a manual one tests advance by hand.
 // Everything time-driven in server/ (tick loop, grace periods, rate limits, pings) reads time only through a Clock.
 
-import type { Clock, TimerHandle } from '../client/net/clock.ts';
+import type { Clock, TimerHandle } from '../sdk/clock.ts';
 
 // One Clock contract and one real clock (performance.now() + setTimeout) for both ends: the client library defines
 // them (browser + Node); the server adds the manual clock its tests drive.
 export type { Clock, TimerHandle };
-export { RealClock as SystemClock } from '../client/net/clock.ts';
+export { RealClock as SystemClock } from '../sdk/clock.ts';
 
 interface ManualTimer {
   id: number;

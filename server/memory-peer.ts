@@ -1,8 +1,8 @@
-// Adapts the client library's in-memory network peer (client/net/memory-transport.ts, described structurally here so
+// Adapts the client library's in-memory network peer (sdk/memory-transport.ts, described structurally here so
 // server/ never imports client code) to a ServerConnection: in-process tests and tools serve MemoryNetwork clients.
 import { clampCloseReason, type ConnectionHandlers, type ServerConnection } from './connection.ts';
 
-/** The server side of a MemoryNetwork link (the shape of client/net's MemoryPeer). */
+/** The server side of a MemoryNetwork link (the shape of sdk's MemoryPeer). */
 export interface MemoryPeerLike {
   readonly label: string;
   send(data: Uint8Array): void;

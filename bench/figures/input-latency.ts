@@ -107,7 +107,7 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
         },
       ],
       notes: [
-        `The server (startServer, ${DEFAULT_SCENARIO}, ${SNAPSHOT_RATE_HZ} Hz snapshots) runs in the figure's process; the client library (client/net, Node's WebSocket) runs in a child process on loopback.`,
+        `The server (startServer, ${DEFAULT_SCENARIO}, ${SNAPSHOT_RATE_HZ} Hz snapshots) runs in the figure's process; the client library (sdk/, Node's WebSocket) runs in a child process on loopback.`,
         'Arrival → applying tick: 1 means the input was applied by the first tick that ran after it arrived; every tick of input lead the client chose (to absorb jitter) adds one. Counted at the first arrival of each (player, tick) input (messages repeat recent inputs).',
         `Sent → seen: the client toggles its Use button every ${intervalMs} ms; from the first input message carrying the new state leaving the socket to the first decoded snapshot whose own character shows it.`,
         `Client lead at the end: ${report.leadTicks} tick(s); RTT ${report.rttMs === null ? 'n/a' : report.rttMs.toFixed(2)} ms; inputs that arrived late: ${late}.`,

@@ -1,8 +1,8 @@
-// The clients-per-core figure's bot process: N players on the client library (client/net over Node's WebSocket), each
+// The clients-per-core figure's bot process: N players on the client library (sdk/ over Node's WebSocket), each
 // steered every tick by a scripted bot (walk, turn, sprint, jump; no firing, so the scene keeps its body count). Prints
 // {"ready"} once all are welcomed, {"window"} after SETTLE_MS, then {"report"} after WINDOW_MS, closes them and exits.
 // Run: node bench/procs/bot-swarm.ts WS_URL CLIENTS SETTLE_MS WINDOW_MS
-import { connect, type NetClient } from '../../client/net/index.ts';
+import { connect, type NetClient } from '../../sdk/index.ts';
 import { BotScript } from '../../shared/sim/bots.ts';
 
 const [url, nArg, settleArg, windowArg] = process.argv.slice(2);

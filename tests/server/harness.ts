@@ -7,7 +7,7 @@ import { GameServer } from '../../server/game-server.ts';
 import { silentLogger } from '../../server/logger.ts';
 import { createMemoryLink, type MemoryClientEnd } from '../../server/memory-link.ts';
 import { memoryPeerConnection } from '../../server/memory-peer.ts';
-import { MemoryNetwork, type MemoryNetworkOptions } from '../../client/net/index.ts';
+import { MemoryNetwork, type MemoryNetworkOptions } from '../../sdk/index.ts';
 import { createMetrics } from '../../server/metrics.ts';
 import { createRoomFactory, type ScenarioSource } from '../../server/room-factory.ts';
 import type { Room } from '../../server/room.ts';
@@ -134,7 +134,7 @@ export interface Harness {
   /** Advances the clock by n tick periods. */
   ticks(n: number): void;
   room(id?: string): Room;
-  /** A MemoryNetwork on the harness clock whose MEMORY_URL reaches this server (for client/net's NetClient). */
+  /** A MemoryNetwork on the harness clock whose MEMORY_URL reaches this server (for sdk's NetClient). */
   network(opts?: MemoryNetworkOptions): MemoryNetwork;
   /** Every record the room stepped, and its hash after each step. */
   history(id?: string): { records: TickInputRecord[]; hashes: string[] };

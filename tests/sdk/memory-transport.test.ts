@@ -1,8 +1,8 @@
 // Tests of the in-memory network: handshake order, latency, jitter that keeps message order, clean closes that
 // deliver what is in flight, abrupt drops that lose it, and refused connections.
 import { describe, expect, it } from 'vitest';
-import { MemoryNetwork, type MemoryPeer } from '../../../client/net/memory-transport.ts';
-import { ManualClock } from '../../../server/clock.ts';
+import { MemoryNetwork, type MemoryPeer } from '../../sdk/memory-transport.ts';
+import { ManualClock } from '../../server/clock.ts';
 
 function setup(opts: { latencyMs?: number; jitterMs?: number } = {}) {
   const clock = new ManualClock(0);

@@ -1,8 +1,8 @@
 // Tests of input sending: one fixed command per tick, messages that repeat the last few commands, forward-only ticks,
 // long jumps, and the adaptive lead (jitter, boosts on server-reported misses, decay).
 import { describe, expect, it } from 'vitest';
-import { InputLead, InputSender } from '../../../client/net/input-sender.ts';
-import { NEUTRAL_INPUT, type InputCommand } from '../../../shared/sim/input.ts';
+import { InputLead, InputSender } from '../../sdk/input-sender.ts';
+import { NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input.ts';
 
 const cmd = (moveX: number): InputCommand => ({ ...NEUTRAL_INPUT, moveX });
 

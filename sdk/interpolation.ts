@@ -1,8 +1,8 @@
 // The interpolation buffer: holds decoded snapshots by tick and, at any local time, produces the world as of a render
 // tick that trails the arrivals by an adaptive delay (two snapshot intervals plus measured arrival jitter). Positions
 // lerp, rotations slerp on the shortest path; late snapshots mean bounded extrapolation, then hold. Client-only code.
-import type { SnapshotView } from '../../shared/protocol/snapshot-frame.ts';
-import type { CharacterState } from '../../shared/sim/types.ts';
+import type { SnapshotView } from '../shared/protocol/snapshot-frame.ts';
+import type { CharacterState } from '../shared/sim/types.ts';
 
 /** Options of InterpolationBuffer. */
 export interface InterpolationOptions {

@@ -2,13 +2,13 @@
 // sync, inputs that arrive ahead of their tick, snapshots decoded exactly and acked into deltas, interpolation,
 // events, errors, reconnects with backoff, and the endings that must not reconnect.
 import { describe, expect, it } from 'vitest';
-import { connect, type NetClient, type NetClientOptions } from '../../../client/net/client.ts';
-import { MemoryNetwork } from '../../../client/net/memory-transport.ts';
-import { ManualClock } from '../../../server/clock.ts';
-import { ByeReason, ErrorCode } from '../../../shared/protocol/opcodes.ts';
-import { framesEqual } from '../../../shared/protocol/snapshot-frame.ts';
-import { NEUTRAL_INPUT } from '../../../shared/sim/input.ts';
-import type { SimEvent } from '../../../shared/sim/types.ts';
+import { connect, type NetClient, type NetClientOptions } from '../../sdk/client.ts';
+import { MemoryNetwork } from '../../sdk/memory-transport.ts';
+import { ManualClock } from '../../server/clock.ts';
+import { ByeReason, ErrorCode } from '../../shared/protocol/opcodes.ts';
+import { framesEqual } from '../../shared/protocol/snapshot-frame.ts';
+import { NEUTRAL_INPUT } from '../../shared/sim/input.ts';
+import type { SimEvent } from '../../shared/sim/types.ts';
 import { FakeServer, type FakeServerOptions } from './fake-server.ts';
 
 const URL = 'mem://game';

@@ -1,8 +1,8 @@
 // Tests of clock sync: RTT and jitter from pongs, the offset from the least-delayed sample, and the server tick
 // estimate converging within a fraction of a tick despite asymmetric queueing and random tick phases.
 import { describe, expect, it } from 'vitest';
-import { ClockSync } from '../../../client/net/clock-sync.ts';
-import { Prng } from '../../../shared/sim/prng.ts';
+import { ClockSync } from '../../sdk/clock-sync.ts';
+import { Prng } from '../../shared/sim/prng.ts';
 
 const TICK_MS = 1000 / 60;
 

@@ -1,18 +1,18 @@
 // Test helper: a small protocol-exact server on a MemoryNetwork and a ManualClock. It ticks at 60 Hz, buffers each
 // player's inputs by tick (repeating the last one when none arrived, counting misses), moves one character per
 // player from its inputs plus a few scripted bodies, and sends per-client delta snapshots, pongs and events.
-import type { MemoryNetwork, MemoryPeer } from '../../../client/net/memory-transport.ts';
-import type { ManualClock } from '../../../server/clock.ts';
-import { BodyFlag } from '../../../shared/physics/body-handle.ts';
-import { encodeServerMessage } from '../../../shared/protocol/codec.ts';
-import { ByeReason, ErrorCode, PROTOCOL_VERSION } from '../../../shared/protocol/opcodes.ts';
-import { createSnapshotFormat, snapshotFormatSpec } from '../../../shared/protocol/quantization.ts';
-import type { ServerMessage } from '../../../shared/protocol/server-messages.ts';
-import { quantizeFrame, type QuantizedFrame } from '../../../shared/protocol/snapshot-frame.ts';
-import { SnapshotEncoder } from '../../../shared/protocol/snapshot-stream.ts';
-import { decodeClientMessage } from '../../../shared/protocol/validation.ts';
-import { NEUTRAL_INPUT, type InputCommand } from '../../../shared/sim/input.ts';
-import type { BodyDescriptor, CharacterState, SimEvent } from '../../../shared/sim/types.ts';
+import type { MemoryNetwork, MemoryPeer } from '../../sdk/memory-transport.ts';
+import type { ManualClock } from '../../server/clock.ts';
+import { BodyFlag } from '../../shared/physics/body-handle.ts';
+import { encodeServerMessage } from '../../shared/protocol/codec.ts';
+import { ByeReason, ErrorCode, PROTOCOL_VERSION } from '../../shared/protocol/opcodes.ts';
+import { createSnapshotFormat, snapshotFormatSpec } from '../../shared/protocol/quantization.ts';
+import type { ServerMessage } from '../../shared/protocol/server-messages.ts';
+import { quantizeFrame, type QuantizedFrame } from '../../shared/protocol/snapshot-frame.ts';
+import { SnapshotEncoder } from '../../shared/protocol/snapshot-stream.ts';
+import { decodeClientMessage } from '../../shared/protocol/validation.ts';
+import { NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input.ts';
+import type { BodyDescriptor, CharacterState, SimEvent } from '../../shared/sim/types.ts';
 
 const TICK_MS = 1000 / 60;
 const BOUNDS = { min: { x: -100, y: -10, z: -100 }, max: { x: 100, y: 50, z: 100 } };

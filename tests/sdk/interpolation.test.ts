@@ -2,10 +2,10 @@
 // with gaps; lerp/slerp between the snapshots around the render time, bounded extrapolation then hold, spawns and
 // removals at their tick, and a delay that adapts to arrival jitter.
 import { describe, expect, it } from 'vitest';
-import { InterpolationBuffer, slerpInto, type InterpolatedFrame } from '../../../client/net/interpolation.ts';
-import type { SnapshotView } from '../../../shared/protocol/snapshot-frame.ts';
-import { Prng } from '../../../shared/sim/prng.ts';
-import type { CharacterState } from '../../../shared/sim/types.ts';
+import { InterpolationBuffer, slerpInto, type InterpolatedFrame } from '../../sdk/interpolation.ts';
+import type { SnapshotView } from '../../shared/protocol/snapshot-frame.ts';
+import { Prng } from '../../shared/sim/prng.ts';
+import type { CharacterState } from '../../shared/sim/types.ts';
 
 const TICK_MS = 1000 / 60;
 

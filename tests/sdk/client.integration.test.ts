@@ -2,13 +2,13 @@
 // real server on port 0: two clients join, one walks and the other sees it move in interpolated snapshots, leaving
 // removes the character, a shutdown bye and an unreachable server end the client cleanly. Every wait is bounded.
 import { afterEach, describe, expect, it } from 'vitest';
-import { connect, type NetClient, type NetClientOptions } from '../../../client/net/client.ts';
-import { silentLogger } from '../../../server/logger.ts';
-import { createMetrics } from '../../../server/metrics.ts';
-import { startServer, type RunningServer } from '../../../server/start-server.ts';
-import { NEUTRAL_INPUT } from '../../../shared/sim/input.ts';
-import type { ScenarioDefinition } from '../../../shared/sim/scenario.ts';
-import type { SimEvent } from '../../../shared/sim/types.ts';
+import { connect, type NetClient, type NetClientOptions } from '../../sdk/client.ts';
+import { silentLogger } from '../../server/logger.ts';
+import { createMetrics } from '../../server/metrics.ts';
+import { startServer, type RunningServer } from '../../server/start-server.ts';
+import { NEUTRAL_INPUT } from '../../shared/sim/input.ts';
+import type { ScenarioDefinition } from '../../shared/sim/scenario.ts';
+import type { SimEvent } from '../../shared/sim/types.ts';
 
 /** Ground, a few boxes, players side by side. */
 const plain: ScenarioDefinition = {

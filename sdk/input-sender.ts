@@ -1,9 +1,9 @@
 // Input sending: InputSender fixes one command per tick as the target tick advances and builds input messages that
 // repeat the last few commands (redundancy); InputLead picks how many ticks ahead of the server to aim, from RTT
 // jitter plus a boost whenever the server reports ticks where our input arrived too late.
-import type { InputMessage } from '../../shared/protocol/client-messages.ts';
-import { DEFAULT_INPUT_REDUNDANCY, MAX_INPUT_COMMANDS_PER_MESSAGE } from '../../shared/protocol/limits.ts';
-import { NEUTRAL_INPUT, validateInputCommand, type InputCommand } from '../../shared/sim/input.ts';
+import type { InputMessage } from '../shared/protocol/client-messages.ts';
+import { DEFAULT_INPUT_REDUNDANCY, MAX_INPUT_COMMANDS_PER_MESSAGE } from '../shared/protocol/limits.ts';
+import { NEUTRAL_INPUT, validateInputCommand, type InputCommand } from '../shared/sim/input.ts';
 
 /** Options of InputSender. */
 export interface InputSenderOptions {

@@ -1,7 +1,7 @@
 // Tests of the reconnect policy: exponential backoff with bounded jitter, caps, and which endings are retried.
 import { describe, expect, it } from 'vitest';
-import { backoffDelayMs, isRetryable, reconnectPolicy } from '../../../client/net/reconnect-policy.ts';
-import { ByeReason, ErrorCode } from '../../../shared/protocol/opcodes.ts';
+import { backoffDelayMs, isRetryable, reconnectPolicy } from '../../sdk/reconnect-policy.ts';
+import { ByeReason, ErrorCode } from '../../shared/protocol/opcodes.ts';
 
 describe('reconnect-policy', () => {
   it('doubles the delay per attempt up to the cap, scaled by a jitter factor in [0.75, 1.25)', () => {

@@ -1,6 +1,6 @@
 // When and how soon the client reconnects: exponential backoff with jitter, a cap on attempts, and which endings
 // are final (a kick, a refused version, a missing room) versus worth retrying (drops, restarts, a full server).
-import { ErrorCode, RECONNECTABLE_BYE_REASONS } from '../../shared/protocol/opcodes.ts';
+import { ErrorCode, RECONNECTABLE_BYE_REASONS } from '../shared/protocol/opcodes.ts';
 
 /** Reconnect settings. */
 export interface ReconnectOptions {
