@@ -1,11 +1,12 @@
 // The typed network client for browsers and Node 24: connect(url, {name, room}) joins a room, keeps the clock in
 // sync, sends inputs ahead of the server tick, decodes and acks snapshots into an interpolation buffer, reports
 // events and errors, and reconnects with backoff after drops. One LinkSession per connection does the wire work.
+import type { Clock, TimerHandle } from '../shared/clock.ts';
 import { checkPlayerName, checkRoomId } from '../shared/protocol/validation.ts';
 import type { ErrorMessage, ServerByeMessage, WelcomeMessage } from '../shared/protocol/server-messages.ts';
 import { NEUTRAL_INPUT, validateInputCommand, type InputCommand } from '../shared/sim/input.ts';
 import type { BodyDescriptor, SimEvent } from '../shared/sim/types.ts';
-import { RealClock, type Clock, type TimerHandle } from './clock.ts';
+import { RealClock } from './clock.ts';
 import { Emitter } from './emitter.ts';
 import type { InputLeadOptions } from './input-sender.ts';
 import type { InterpolatedFrame, InterpolationOptions } from './interpolation.ts';

@@ -1,6 +1,7 @@
 // One connection's lifetime inside the client: hello → welcome, pings and clock sync, the input loop (target tick =
 // estimated server tick at arrival + adaptive lead, with redundancy), snapshot decode → ack → interpolation, events
 // and errors. NetClient creates a new LinkSession per (re)connection and owns reconnect policy and public events.
+import type { Clock, TimerHandle } from '../shared/clock.ts';
 import type { ClientMessage } from '../shared/protocol/client-messages.ts';
 import { encodeClientMessage } from '../shared/protocol/codec.ts';
 import { PROTOCOL_VERSION } from '../shared/protocol/opcodes.ts';
@@ -11,7 +12,6 @@ import { dequantizeFrame, type QuantizedFrame, type SnapshotView } from '../shar
 import { SnapshotDecoder } from '../shared/protocol/snapshot-stream.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
 import type { BodyDescriptor, SimEvent } from '../shared/sim/types.ts';
-import type { Clock, TimerHandle } from './clock.ts';
 import { ClockSync } from './clock-sync.ts';
 import { InputLead, InputSender, type InputLeadOptions } from './input-sender.ts';
 import { InterpolationBuffer, type InterpolatedFrame, type InterpolationOptions } from './interpolation.ts';

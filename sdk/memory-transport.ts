@@ -1,7 +1,7 @@
 // An in-memory network on a Clock for tests and tools: servers listen on URLs, clients connect through an ordinary
 // TransportFactory; each direction delivers whole messages in order after latency plus seeded jitter (a TCP-like
 // link conditioner). Peers can be dropped abruptly and URLs taken down to test reconnects.
-import type { Clock } from './clock.ts';
+import type { Clock } from '../shared/clock.ts';
 import type { Transport, TransportFactory, TransportHandlers } from './transport.ts';
 
 /** Link conditions of a MemoryNetwork. */

@@ -1,9 +1,10 @@
 // Headless scripted bots over the network: N clients of the client library (sdk/) join a server, each driven
 // by its own seeded BotScript (walk, strafe, turn, sprint, jump, fire) at 60 commands per second, and report traffic.
 import { connect, type NetClient, type TransportFactory } from '../sdk/index.ts';
+import type { Clock, TimerHandle } from '../shared/clock.ts';
 import { BotScript } from '../shared/sim/bots.ts';
 import { NEUTRAL_INPUT } from '../shared/sim/input.ts';
-import { SystemClock, type Clock, type TimerHandle } from './clock.ts';
+import { SystemClock } from './clock.ts';
 
 /** Options of runBots. */
 export interface BotsOptions {

@@ -19,7 +19,7 @@ import {
   type SnapshotFormat,
 } from '../shared/protocol/index.ts';
 import type { BodyDescriptor, SimEvent } from '../shared/sim/types.ts';
-import type { Clock, TimerHandle } from './clock.ts';
+import type { Clock, TimerHandle } from '../shared/clock.ts';
 import { CloseCode, type ServerConnection } from './connection.ts';
 import { OfferResult } from './input-buffer.ts';
 import type { Logger } from './logger.ts';

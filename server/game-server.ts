@@ -1,7 +1,8 @@
 // The transport-agnostic server core: rooms, client sessions, metrics and logs on one clock. It accepts
 // ServerConnections from any transport (the ws gateway, or in-memory links in tests) and shuts everything down cleanly.
+import type { Clock } from '../shared/clock.ts';
 import { ByeReason, encodeServerMessage } from '../shared/protocol/index.ts';
-import { SystemClock, type Clock } from './clock.ts';
+import { SystemClock } from './clock.ts';
 import { ClientSession, DEFAULT_SESSION_LIMITS, type SessionLimits } from './client-session.ts';
 import { CloseCode, type ServerConnection } from './connection.ts';
 import { createLogger, type Logger } from './logger.ts';

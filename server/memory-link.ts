@@ -1,7 +1,7 @@
 // An in-process client⇄server link on a Clock: each direction delivers whole messages after a latency (timers, never
 // re-entrantly), counts queued bytes as bufferedAmount, and can be stalled to model a reader that stopped reading.
 // Used by the test harness and the in-process benchmark; the server sees it as an ordinary ServerConnection.
-import type { Clock } from './clock.ts';
+import type { Clock } from '../shared/clock.ts';
 import { clampCloseReason, type ConnectionHandlers, type ServerConnection } from './connection.ts';
 
 /** Options of createMemoryLink. */

@@ -1,10 +1,10 @@
 // One room: a Simulation stepped by its own TickClock, its players and their input buffers, the exact per-tick input
 // record (stepped, recorded), and delivery of each tick's events and world frames to its members. Protocol-agnostic.
+import type { Clock } from '../shared/clock.ts';
 import { BODY_STATE_STRIDE, BodyFlag, type Vec3Like } from '../shared/physics/index.ts';
 import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '../shared/sim/types.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
-import type { Clock } from './clock.ts';
 import { InputBuffer, OfferResult } from './input-buffer.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';

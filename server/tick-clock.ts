@@ -1,6 +1,6 @@
 // The fixed-rate tick driver: tick k is due at start + k × dt on a monotonic Clock (absolute targets, so no drift),
 // runs late ticks back to back up to a catch-up limit, then gives up the lost time (slows down) and reports it.
-import type { Clock, TimerHandle } from './clock.ts';
+import type { Clock, TimerHandle } from '../shared/clock.ts';
 
 /** What the driver reports when it had to give up time instead of catching up. */
 export interface SlowdownReport {

@@ -4,7 +4,7 @@
 import { describe, expect, it } from 'vitest';
 import { connect, type NetClient, type NetClientOptions } from '../../sdk/client.ts';
 import { MemoryNetwork } from '../../sdk/memory-transport.ts';
-import { ManualClock } from '../../server/clock.ts';
+import { ManualClock } from '../../shared/clock.ts';
 import { ByeReason, ErrorCode } from '../../shared/protocol/opcodes.ts';
 import { framesEqual } from '../../shared/protocol/snapshot-frame.ts';
 import { NEUTRAL_INPUT } from '../../shared/sim/input.ts';

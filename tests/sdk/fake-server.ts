@@ -2,7 +2,7 @@
 // player's inputs by tick (repeating the last one when none arrived, counting misses), moves one character per
 // player from its inputs plus a few scripted bodies, and sends per-client delta snapshots, pongs and events.
 import type { MemoryNetwork, MemoryPeer } from '../../sdk/memory-transport.ts';
-import type { ManualClock } from '../../server/clock.ts';
+import type { ManualClock } from '../../shared/clock.ts';
 import { BodyFlag } from '../../shared/physics/body-handle.ts';
 import { encodeServerMessage } from '../../shared/protocol/codec.ts';
 import { ByeReason, ErrorCode, PROTOCOL_VERSION } from '../../shared/protocol/opcodes.ts';

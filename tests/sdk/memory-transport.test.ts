@@ -2,7 +2,7 @@
 // deliver what is in flight, abrupt drops that lose it, and refused connections.
 import { describe, expect, it } from 'vitest';
 import { MemoryNetwork, type MemoryPeer } from '../../sdk/memory-transport.ts';
-import { ManualClock } from '../../server/clock.ts';
+import { ManualClock } from '../../shared/clock.ts';
 
 function setup(opts: { latencyMs?: number; jitterMs?: number } = {}) {
   const clock = new ManualClock(0);

@@ -1,7 +1,6 @@
 // In-process server harness for tests: a GameServer on a ManualClock with real Simulations, and protocol-level test
 // clients over memory links that decode every server message and snapshot (acking them) exactly as a client would.
 import '../../server/physics-node.ts';
-import { ManualClock } from '../../server/clock.ts';
 import type { SessionLimits } from '../../server/client-session.ts';
 import { GameServer } from '../../server/game-server.ts';
 import { silentLogger } from '../../server/logger.ts';
@@ -21,6 +20,7 @@ import {
   type ServerMessage,
   type WelcomeMessage,
 } from '../../shared/protocol/index.ts';
+import { ManualClock } from '../../shared/clock.ts';
 import type { InputCommand } from '../../shared/sim/input.ts';
 import type { ScenarioDefinition } from '../../shared/sim/scenario.ts';
 import type { SimEvent, TickInputRecord } from '../../shared/sim/types.ts';

@@ -1,8 +1,8 @@
 // Tests for server/memory-link.ts: latency on the clock, bufferedAmount while stalled, ws-like oversize closes,
 // early messages, and close notices on both ends.
 import { describe, expect, it } from 'vitest';
-import { ManualClock } from '../../server/clock.ts';
 import { createMemoryLink } from '../../server/memory-link.ts';
+import { ManualClock } from '../../shared/clock.ts';
 
 describe('memory-link', () => {
   it('delivers both ways after the latency, in order, counting queued bytes', () => {

@@ -1,11 +1,11 @@
 // Tests for server/room.ts with a recording stand-in simulation: the exact records stepped (joins, leaves, inputs
 // applied or repeated), event and frame delivery, limits, pausing when empty, failure isolation.
 import { describe, expect, it } from 'vitest';
-import { ManualClock } from '../../server/clock.ts';
 import { OfferResult } from '../../server/input-buffer.ts';
 import { silentLogger } from '../../server/logger.ts';
 import { createMetrics, type ServerMetrics } from '../../server/metrics.ts';
 import { Room, RoomError, type BodyStates, type RoomMember, type RoomOptions, type RoomSimulation, type WorldFrame } from '../../server/room.ts';
+import { ManualClock } from '../../shared/clock.ts';
 import { NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input.ts';
 import type { CharacterState, SimEvent, TickInputRecord } from '../../shared/sim/types.ts';
 
