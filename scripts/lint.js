@@ -4,7 +4,7 @@ import { readFileSync, readdirSync, statSync } from 'node:fs';
 import { join, relative } from 'node:path';
 
 const root = new URL('..', import.meta.url).pathname;
-const roots = ['shared', 'sdk', 'server', 'client', 'scenarios', 'tests', 'bench', 'scripts', 'bin'];
+const roots = ['shared', 'sdk', 'server', 'cli', 'client', 'scenarios', 'tests', 'bench', 'scripts', 'bin'];
 const skipDirs = new Set(['node_modules', 'dist', 'results', 'fixtures']);
 
 function walk(dir, out) {

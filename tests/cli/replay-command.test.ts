@@ -4,10 +4,10 @@ import { mkdtemp, readFile, rm, writeFile } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { readLogBytes } from '../../../server/log/log-bytes.ts';
-import { getScenario } from '../../../scenarios/index.ts';
-import { cli, jsonOut, retouchTick } from '../../helpers/cli.ts';
-import { buildLog } from '../../helpers/input-log.ts';
+import { readLogBytes } from '../../server/log/log-bytes.ts';
+import { getScenario } from '../../scenarios/index.ts';
+import { cli, jsonOut, retouchTick } from '../helpers/cli.ts';
+import { buildLog } from '../helpers/input-log.ts';
 
 let dir = '';
 let logPath = '';

@@ -3,9 +3,9 @@ import { mkdtemp, rm, writeFile } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { readLogBytes } from '../../../server/log/log-bytes.ts';
-import { cli, jsonOut } from '../../helpers/cli.ts';
-import { buildLog } from '../../helpers/input-log.ts';
+import { readLogBytes } from '../../server/log/log-bytes.ts';
+import { cli, jsonOut } from '../helpers/cli.ts';
+import { buildLog } from '../helpers/input-log.ts';
 
 let dir = '';
 beforeAll(async () => {

@@ -3,15 +3,15 @@
 import { readFile, writeFile } from 'node:fs/promises';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import '../physics-node.ts';
-import { formatGoldenFile, parseGoldenFile, runGolden, type GoldenResult } from '../../shared/sim/golden.ts';
-import { installedJoltVersion } from '../log/jolt-version.ts';
+import '../server/physics-node.ts';
+import { formatGoldenFile, parseGoldenFile, runGolden, type GoldenResult } from '../shared/sim/golden.ts';
+import { installedJoltVersion } from '../server/log/jolt-version.ts';
 import type { ParsedArgs } from './args.ts';
 import { ExitCode, type CliIo, type CommandSpec } from './command.ts';
 import { allScenarios, scenarioNamed } from './scenario-setup.ts';
 
 /** Where golden files live by default: beside the scenarios. */
-export const DEFAULT_GOLDEN_DIR = fileURLToPath(new URL('../../scenarios/', import.meta.url));
+export const DEFAULT_GOLDEN_DIR = fileURLToPath(new URL('../scenarios/', import.meta.url));
 
 /** Compares a golden run with its stored file; returns null when they agree, else what differs. */
 export async function checkGolden(result: GoldenResult, path: string): Promise<string | null> {

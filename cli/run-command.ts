@@ -1,7 +1,7 @@
 // `run --scenario NAME [--ticks N] [--param k=v]… [--seed S] [--bots N] [--json]`: a headless run that prints the
 // final state hash and the mean simulation time per tick.
-import { BotScript } from '../../shared/sim/bots.ts';
-import { emptyTickInput } from '../../shared/sim/types.ts';
+import { BotScript } from '../shared/sim/bots.ts';
+import { emptyTickInput } from '../shared/sim/types.ts';
 import type { ParsedArgs } from './args.ts';
 import { ExitCode, type CliIo, type CommandSpec } from './command.ts';
 import { ProgressBar } from './progress.ts';

@@ -2,11 +2,11 @@
 // recorded hash, and on the first mismatch names the divergent tick and (from the next recorded checkpoint) the
 // first differing body. Shared by `replay`, `verify` and its worker threads; prints nothing.
 import { stat } from 'node:fs/promises';
-import type { Divergence } from '../../shared/sim/state-dump.ts';
-import type { Simulation } from '../../shared/sim/simulation.ts';
-import { installedJoltVersion } from '../log/jolt-version.ts';
-import { LogCorruptError, type LogEntry, type LogHeader, type LogStatus } from '../log/log-format.ts';
-import { LogReader } from '../log/log-reader.ts';
+import type { Divergence } from '../shared/sim/state-dump.ts';
+import type { Simulation } from '../shared/sim/simulation.ts';
+import { installedJoltVersion } from '../server/log/jolt-version.ts';
+import { LogCorruptError, type LogEntry, type LogHeader, type LogStatus } from '../server/log/log-format.ts';
+import { LogReader } from '../server/log/log-reader.ts';
 import { createSimulation, scenarioNamed } from './scenario-setup.ts';
 
 /** What to replay and what to keep. */

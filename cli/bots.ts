@@ -4,7 +4,7 @@ import { connect, type NetClient, type TransportFactory } from '../sdk/index.ts'
 import type { Clock, TimerHandle } from '../shared/clock.ts';
 import { BotScript } from '../shared/sim/bots.ts';
 import { NEUTRAL_INPUT } from '../shared/sim/input.ts';
-import { SystemClock } from './clock.ts';
+import { SystemClock } from '../server/clock.ts';
 
 /** Options of runBots. */
 export interface BotsOptions {

@@ -1,14 +1,14 @@
-// Integration test for server/serve.ts through the real CLI process: `serve --port 0 --record DIR` prints its URL,
+// Integration test for cli/serve.ts through the real CLI process: `serve --port 0 --record DIR` prints its URL,
 // plays over WebSocket, and on SIGTERM tells clients why, ends the recording (which replays) and exits 0.
 import { spawn } from 'node:child_process';
 import { mkdtempSync, readdirSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, describe, expect, it } from 'vitest';
-import { replayLog } from '../../server/cli/replay-session.ts';
+import { replayLog } from '../../cli/replay-session.ts';
 import { ByeReason } from '../../shared/protocol/index.ts';
 import { NEUTRAL_INPUT } from '../../shared/sim/input.ts';
-import { WsTestClient } from './ws-client.ts';
+import { WsTestClient } from '../server/ws-client.ts';
 
 const tmp = mkdtempSync(join(tmpdir(), 'taos-serve-'));
 afterAll(() => rmSync(tmp, { recursive: true, force: true }));

@@ -1,9 +1,9 @@
 // The `serve` command's body: starts the server with the command-line options, prints where it listens, logs JSON
 // lines to stderr, and on SIGINT/SIGTERM shuts down cleanly (byes, recordings ended, logs flushed) and returns.
-import type { CliIo } from './cli/command.ts';
-import { createLogger } from './logger.ts';
-import { installShutdown, type SignalSource } from './shutdown.ts';
-import { startServer, type StartServerOptions } from './start-server.ts';
+import type { CliIo } from './command.ts';
+import { createLogger } from '../server/logger.ts';
+import { installShutdown, type SignalSource } from '../server/shutdown.ts';
+import { startServer, type StartServerOptions } from '../server/start-server.ts';
 
 /** Options of runServe: the server's plus logging and signal hooks. */
 export interface ServeOptions extends Omit<StartServerOptions, 'logger'> {

@@ -1,7 +1,7 @@
 // `inspect FILE [--json]`: what an input log holds without simulating it: header, record counts and bytes by type,
 // session length, and how the file ends (complete, unterminated, truncated, or where it is corrupt).
-import { LogCorruptError, type LogEntry } from '../log/log-format.ts';
-import { LogReader } from '../log/log-reader.ts';
+import { LogCorruptError, type LogEntry } from '../server/log/log-format.ts';
+import { LogReader } from '../server/log/log-reader.ts';
 import type { ParsedArgs } from './args.ts';
 import { ExitCode, UsageError, type CliIo, type CommandSpec } from './command.ts';
 

@@ -1,6 +1,6 @@
 // `bots --url ws://127.0.0.1:8080 --count N [--room ID] [--seconds S] [--seed SEED]`: headless scripted bots that
 // join a running server through the client library and play until the time is up (or Ctrl+C), then report traffic.
-import { startBots, type BotsReport } from '../bots.ts';
+import { startBots, type BotsReport } from './bots.ts';
 import type { ParsedArgs } from './args.ts';
 import { ExitCode, UsageError, type CliIo, type CommandSpec } from './command.ts';
 

@@ -1,7 +1,7 @@
 // `serve [--port 8080] [--host 127.0.0.1] [--scenario NAME] [--param k=v] [--snapshot-rate 30] [--record DIR]
 // [--max-clients N]`: runs the networked server (HTTP + WebSocket on one port) until SIGINT/SIGTERM.
-import { DEFAULT_SCENARIO } from '../../scenarios/index.ts';
-import { runServe } from '../serve.ts';
+import { DEFAULT_SCENARIO } from '../scenarios/index.ts';
+import { runServe } from './serve.ts';
 import type { ParsedArgs } from './args.ts';
 import { UsageError, type CliIo, type CommandSpec } from './command.ts';
 import { checkParams, parseSeed, scenarioNamed } from './scenario-setup.ts';

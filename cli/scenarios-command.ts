@@ -1,5 +1,5 @@
 // `scenarios [--json]`: lists every registered scenario with its description and parameters (defaults, limits).
-import type { ScenarioDefinition } from '../../shared/sim/scenario.ts';
+import type { ScenarioDefinition } from '../shared/sim/scenario.ts';
 import type { ParsedArgs } from './args.ts';
 import { ExitCode, type CliIo, type CommandSpec } from './command.ts';
 import { allScenarios } from './scenario-setup.ts';

@@ -1,9 +1,9 @@
-// Tests for server/bots.ts: seeded scripted bots join through the client library (MemoryNetwork, manual clock),
+// Tests for cli/bots.ts: seeded scripted bots join through the client library (MemoryNetwork, manual clock),
 // drive varied commands into the room, stop on time and report their traffic.
 import { afterEach, describe, expect, it } from 'vitest';
-import { startBots } from '../../server/bots.ts';
-import { MEMORY_URL, startHarness, type Harness } from './harness.ts';
-import { stripScenario } from './test-scenarios.ts';
+import { startBots } from '../../cli/bots.ts';
+import { MEMORY_URL, startHarness, type Harness } from '../server/harness.ts';
+import { stripScenario } from '../server/test-scenarios.ts';
 
 let h: Harness | null = null;
 afterEach(async () => {

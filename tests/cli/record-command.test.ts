@@ -1,15 +1,15 @@
 // Tests for `record`: the log holds the bots' exact inputs and the simulation's hashes and checkpoints, the same
 // command writes the same bytes, and existing files are never replaced without --force.
-import '../../../server/physics-node.ts';
+import '../../server/physics-node.ts';
 import { mkdtemp, readFile, rm, writeFile } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { readLogBytes } from '../../../server/log/log-bytes.ts';
-import { getScenario } from '../../../scenarios/index.ts';
-import { BotScript } from '../../../shared/sim/bots.ts';
-import { Simulation } from '../../../shared/sim/simulation.ts';
-import { cli, jsonOut } from '../../helpers/cli.ts';
+import { readLogBytes } from '../../server/log/log-bytes.ts';
+import { getScenario } from '../../scenarios/index.ts';
+import { BotScript } from '../../shared/sim/bots.ts';
+import { Simulation } from '../../shared/sim/simulation.ts';
+import { cli, jsonOut } from '../helpers/cli.ts';
 
 let dir = '';
 beforeAll(async () => {

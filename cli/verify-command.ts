@@ -4,13 +4,13 @@ import { spawn } from 'node:child_process';
 import { availableParallelism } from 'node:os';
 import { fileURLToPath } from 'node:url';
 import { Worker } from 'node:worker_threads';
-import { LogReader } from '../log/log-reader.ts';
+import { LogReader } from '../server/log/log-reader.ts';
 import type { ParsedArgs } from './args.ts';
 import { ExitCode, UsageError, type CliIo, type CommandSpec } from './command.ts';
 import { describeReplay } from './replay-command.ts';
 import type { ReplayReport } from './replay-session.ts';
 
-const BIN = fileURLToPath(new URL('../../bin/taos-physics.js', import.meta.url));
+const BIN = fileURLToPath(new URL('../bin/taos-physics.js', import.meta.url));
 
 /** One replay's per-tick hashes and verdict, as verify sees it. */
 interface RunResult {

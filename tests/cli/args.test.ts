@@ -1,7 +1,7 @@
 // Tests for the CLI argument parser: flag forms, typed values, repeatable key=value pairs, and clear errors.
 import { describe, expect, it } from 'vitest';
-import { editDistance, parseArgs, wantsHelp } from '../../../server/cli/args.ts';
-import { UsageError, type CommandSpec } from '../../../server/cli/command.ts';
+import { editDistance, parseArgs, wantsHelp } from '../../cli/args.ts';
+import { UsageError, type CommandSpec } from '../../cli/command.ts';
 
 const spec: CommandSpec = {
   name: 'demo',

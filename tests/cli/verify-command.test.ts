@@ -4,8 +4,8 @@ import { mkdtemp, readFile, rm, writeFile } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { firstHashDifference } from '../../../server/cli/verify-command.ts';
-import { cli, jsonOut, retouchTick } from '../../helpers/cli.ts';
+import { firstHashDifference } from '../../cli/verify-command.ts';
+import { cli, jsonOut, retouchTick } from '../helpers/cli.ts';
 
 let dir = '';
 let logPath = '';

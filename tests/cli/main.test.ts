@@ -2,10 +2,10 @@
 import { spawnSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
 import { describe, expect, it } from 'vitest';
-import { COMMANDS } from '../../../server/cli/commands.ts';
-import { cli, jsonOut } from '../../helpers/cli.ts';
+import { COMMANDS } from '../../cli/commands.ts';
+import { cli, jsonOut } from '../helpers/cli.ts';
 
-const BIN = fileURLToPath(new URL('../../../bin/taos-physics.js', import.meta.url));
+const BIN = fileURLToPath(new URL('../../bin/taos-physics.js', import.meta.url));
 
 describe('main', () => {
   it('lists every command on --help and shows each command\'s flags on <command> --help', async () => {

@@ -1,7 +1,7 @@
 // Tests for `scenarios`: every registered scenario is listed with its description and parameter limits.
 import { describe, expect, it } from 'vitest';
-import { listScenarios } from '../../../scenarios/index.ts';
-import { cli } from '../../helpers/cli.ts';
+import { listScenarios } from '../../scenarios/index.ts';
+import { cli } from '../helpers/cli.ts';
 
 describe('scenarios-command', () => {
   it('lists every scenario with description, parameters, defaults and limits as JSON', async () => {

@@ -1,9 +1,9 @@
 // Turns command-line scenario choices into a Simulation: scenario lookup by name, parameter and seed checks (each
 // mistake a UsageError naming the valid choices), and Jolt loading for Node.
-import '../physics-node.ts';
-import { getScenario, listScenarios } from '../../scenarios/index.ts';
-import { resolveParams, type ScenarioDefinition } from '../../shared/sim/scenario.ts';
-import { Simulation } from '../../shared/sim/simulation.ts';
+import '../server/physics-node.ts';
+import { getScenario, listScenarios } from '../scenarios/index.ts';
+import { resolveParams, type ScenarioDefinition } from '../shared/sim/scenario.ts';
+import { Simulation } from '../shared/sim/simulation.ts';
 import { didYouMean } from './args.ts';
 import { UsageError } from './command.ts';
 

@@ -1,7 +1,7 @@
 // `record --scenario NAME --bots N --ticks T --out FILE …`: seeded scripted bots (walk, jump, fire) drive
 // characters while every tick's inputs, hashes and periodic checkpoints are written to an input log.
-import { BotScript } from '../../shared/sim/bots.ts';
-import { SessionLog } from '../log/session-log.ts';
+import { BotScript } from '../shared/sim/bots.ts';
+import { SessionLog } from '../server/log/session-log.ts';
 import type { ParsedArgs } from './args.ts';
 import { ExitCode, UsageError, type CliIo, type CommandSpec } from './command.ts';
 import { ProgressBar } from './progress.ts';
