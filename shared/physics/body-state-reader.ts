@@ -1,8 +1,9 @@
 // The bulk body read behind PhysicsWorld.readBodyStates(): the world's bodies in stable-id order, read through
 // Jolt's raw exported bindings (no wrapper objects) into reused typed arrays. Same getters, same bits, ~2× faster.
-import { BodyFlag, BODY_STATE_STRIDE, type BodyHandle } from './body-handle.ts';
+import { BodyFlag, BODY_STATE_STRIDE } from '../physics-data/body-state.ts';
+import type { Vec3Like } from '../physics-data/vectors.ts';
+import type { BodyHandle } from './body-handle.ts';
 import type { JoltModule } from './jolt-backend.ts';
-import type { Vec3Like } from './types.ts';
 
 type RawGetter = (bodyPtr: number) => number;
 

@@ -1,14 +1,14 @@
 // CharacterController (seed §25.13): Jolt CharacterVirtual move-and-slide with stairs, floor stick, jumping and
 // ground state, plus a kinematic inner body on the character's layer so rays and sensors see it.
 // `position` is the character's feet; the capsule stands on it (height 2·(halfHeight + radius)).
+import { checkVec3 } from '../physics-data/shape-spec.ts';
+import type { Vec3Like } from '../physics-data/vectors.ts';
 import type { BodyHandle } from './body-handle.ts';
 import type { JoltModule } from './jolt-backend.ts';
 import { checkNoCollideGroup } from './body-slots.ts';
 import { assertGroupBits, CollisionLayer, makeBroadPhaseFilter, makeObjectLayerFilter, packObjectLayer } from './layers.ts';
 import type { PhysicsWorld } from './physics-world.ts';
-import { checkVec3 } from './shapes.ts';
 import { restoreStateBytes, saveStateBytes, type JoltStateRecorder } from './state-recorder.ts';
-import type { Vec3Like } from './types.ts';
 
 type J = JoltModule;
 

@@ -1,5 +1,7 @@
 // PhysicsWorld: one Jolt PhysicsSystem, its body registry with stable ids, the factories, stepping, sensors and
 // limits. Owns every Jolt object it creates; callers only ever see plain copies and BodyHandles.
+import { checkQuat, checkVec3, STATIC_ONLY_KINDS, validateShapeSpec, type ShapeSpec } from '../physics-data/shape-spec.ts';
+import { IDENTITY_QUAT, type QuatLike, type Vec3Like } from '../physics-data/vectors.ts';
 import { BodyHandle, type BodyRole, type JoltBody } from './body-handle.ts';
 import { createJoltInstance, loadJolt, type JoltModule } from './jolt-backend.ts';
 import { createLayerFilters, type LayerFilters } from './layers.ts';
@@ -11,8 +13,8 @@ import { RayQueries, type RayHit } from './queries.ts';
 import { SensorHub, type SensorEvent } from './sensors.ts';
 import { BodySlots } from './body-slots.ts';
 import { BodyStateReader, type BodyStates } from './body-state-reader.ts';
-import { buildValidatedShape, checkQuat, checkVec3, estimateShapeBytes, STATIC_ONLY_KINDS, validateShapeSpec, type JoltShape, type ShapeSpec } from './shapes.ts';
-import { IDENTITY_QUAT, type BodyOptions, type MotionKind, type QuatLike, type Vec3Like } from './types.ts';
+import { buildValidatedShape, estimateShapeBytes, type JoltShape } from './shapes.ts';
+import type { BodyOptions, MotionKind } from './types.ts';
 import { ensureHeapRoom, ensureRoomForWorld, estimateStateSaveBytes, resolveWorldLimits, StepBudget, type PhysicsWorldOptions, type WorldLimits } from './world-limits.ts';
 
 export type { PhysicsWorldOptions } from './world-limits.ts';

@@ -1,10 +1,10 @@
 // Ray casts (seed §25.9): closest hit with point, body id, normal and fraction; plus an allocation-free rayDownY
 // that reuses cached Jolt scratch objects. Rays ignore the Trigger group (sensors are not surfaces).
+import { checkVec3 } from '../physics-data/shape-spec.ts';
+import type { Vec3Like } from '../physics-data/vectors.ts';
 import type { JoltModule } from './jolt-backend.ts';
 import { CollisionLayer, makeBroadPhaseFilter, makeObjectLayerFilter, packObjectLayer } from './layers.ts';
 import type { PhysicsWorld } from './physics-world.ts';
-import { checkVec3 } from './shapes.ts';
-import type { Vec3Like } from './types.ts';
 
 /** The nearest hit of a ray. */
 export interface RayHit {

@@ -1,6 +1,6 @@
 // Snapshot quantization: the format (position grid from the scenario's bounds, rotation bits) and the float ⇄ integer
 // mappings for body poses (smallest-three quaternions) and character states. Pure arithmetic: no engine Math.
-import type { Vec3Like } from '../physics/types.ts';
+import type { Vec3Like } from '../physics-data/vectors.ts';
 
 /** Largest position step (m) the default format allows on any axis: quantization error is at most half of it. */
 export const DEFAULT_MAX_POSITION_STEP_METRES = 0.002;

@@ -1,8 +1,7 @@
 // Checkpoints: capture everything a Simulation needs to resume (Jolt SaveState(All), each CharacterVirtual, the
 // JS-side state) and restore it, removing bodies and players added since and recreating those removed since
 // under their original stable ids and Jolt BodyIDs. The fast form keeps Jolt's bytes on the WASM heap.
-import { FastStateBuffer, type SensorEvent } from '../physics/index.ts';
-import type { BodyIdAllocatorState } from '../physics/body-id-allocator.ts';
+import { FastStateBuffer, type BodyIdAllocatorState, type SensorEvent } from '../physics/index.ts';
 import type { BodyRecord } from './body-registry.ts';
 import type { Bullet } from './bullets.ts';
 import { createCharacter, type PlayerSnapshot } from './players.ts';

@@ -3,7 +3,7 @@
 // player from its inputs plus a few scripted bodies, and sends per-client delta snapshots, pongs and events.
 import type { MemoryNetwork, MemoryPeer } from '../../sdk/memory-transport.ts';
 import type { ManualClock } from '../../shared/clock.ts';
-import { BodyFlag } from '../../shared/physics/body-handle.ts';
+import { BodyFlag } from '../../shared/physics-data/body-state.ts';
 import { encodeServerMessage } from '../../shared/protocol/codec.ts';
 import { ByeReason, ErrorCode, PROTOCOL_VERSION } from '../../shared/protocol/opcodes.ts';
 import { createSnapshotFormat, snapshotFormatSpec } from '../../shared/protocol/quantization.ts';
