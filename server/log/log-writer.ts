@@ -4,7 +4,7 @@
 import { open, type FileHandle } from 'node:fs/promises';
 import { dirname } from 'node:path';
 import type { TickInputRecord } from '../../shared/sim/types.ts';
-import { ByteWriter } from './byte-io.ts';
+import { ByteWriter } from '../../shared/byte-io.ts';
 import { LogEncoder, type LogHeaderInit } from './log-encoder.ts';
 import type { LogHeader } from './log-format.ts';
 
@@ -69,7 +69,7 @@ export class LogWriter {
       throw new Error(`cannot create input log ${path}: ${e.message}`);
     }
     const writer = new LogWriter(path, fh, encoder, opts);
-    writer.pending.bytes(encoder.start());
+    writer.pending.raw(encoder.start());
     writer.bytesAppended = writer.pending.length;
     try {
       await writer.flushNow(true);
