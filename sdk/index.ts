@@ -7,7 +7,7 @@ export { ClockSync, type ClockSyncOptions, type PongSample } from './clock-sync.
 export { InputLead, InputSender, type InputLeadOptions, type InputSenderOptions } from './input-sender.ts';
 export { InterpolationBuffer, slerpInto, type InterpolatedFrame, type InterpolationMode, type InterpolationOptions, type InterpolationStats, type PushOutcome } from './interpolation.ts';
 export type { LinkClosedInfo, SnapshotInfo } from './link-session.ts';
-export { MemoryNetwork, type MemoryNetworkOptions, type MemoryPeer } from './memory-transport.ts';
+export { MemoryNetwork, type MemoryNetworkOptions, type MemoryPeer, type MemoryTransport } from './memory-transport.ts';
 export { backoffDelayMs, isRetryable, reconnectPolicy, type ReconnectOptions, type ReconnectPolicy } from './reconnect-policy.ts';
 export type { Transport, TransportFactory, TransportHandlers } from './transport.ts';
 export { ABNORMAL_CLOSE, webSocketTransport } from './websocket-transport.ts';

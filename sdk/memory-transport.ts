@@ -1,6 +1,8 @@
 // An in-memory network on a Clock for tests and tools: servers listen on URLs, clients connect through an ordinary
 // TransportFactory; each direction delivers whole messages in order after latency plus seeded jitter (a TCP-like
-// link conditioner). Peers can be dropped abruptly and URLs taken down to test reconnects.
+// link conditioner). Peers can be dropped abruptly and URLs taken down to test reconnects; a client can stall its
+// reading (the server sees its bytes pile up), send a text frame, or be cut off for an oversize message as by ws.
+// The one in-memory link of the project: the SDK's tests, the server's test harness and the bots all use it.
 import type { Clock } from '../shared/clock.ts';
 import type { Transport, TransportFactory, TransportHandlers } from './transport.ts';
 
@@ -12,6 +14,16 @@ export interface MemoryNetworkOptions {
   jitterMs?: number;
   /** Random source in [0, 1) for jitter (seed it in tests). Default: a fixed-seed LCG. */
   random?: () => number;
+  /** Largest client→server message; a bigger one closes the link with 1009 as ws would. Default: unlimited. */
+  maxPayloadBytes?: number;
+}
+
+/** A client's end of a MemoryNetwork link: an ordinary Transport plus what protocol-level tests need. */
+export interface MemoryTransport extends Transport {
+  /** Sends a text frame (the protocol uses binary frames only; servers refuse text). */
+  sendText(text: string): void;
+  /** While stalled, arriving messages wait unread and still count in the server's bufferedAmount. */
+  setStalled(stalled: boolean): void;
 }
 
 /** The server's side of one connection. */
@@ -21,12 +33,12 @@ export interface MemoryPeer {
   send(data: Uint8Array): void;
   /** Closes cleanly with a code and reason; both ends see it after the latency. */
   close(code?: number, reason?: string): void;
-  /** Messages from the client, in order. */
-  onMessage(fn: (data: Uint8Array) => void): void;
+  /** Messages from the client, in order; `binary` is false for a text frame. */
+  onMessage(fn: (data: Uint8Array, binary: boolean) => void): void;
   /** Called once when the link closes (either side). */
   onClose(fn: (code: number, reason: string) => void): void;
   isOpen(): boolean;
-  /** Bytes sent by the server and not yet delivered to the client. */
+  /** Bytes sent by the server and not yet read by the client (in flight, or waiting while the client stalls). */
   bufferedAmount(): number;
 }
 
@@ -41,6 +53,7 @@ export class MemoryNetwork {
   private readonly latency: number;
   private readonly jitter: number;
   private readonly random: () => number;
+  private readonly maxPayloadBytes: number;
   private readonly listeners = new Map<string, (peer: MemoryPeer) => void>();
   private readonly liveDrops = new Set<() => void>();
   private connections = 0;
@@ -49,6 +62,7 @@ export class MemoryNetwork {
     this.clock = clock;
     this.latency = opts.latencyMs ?? 0;
     this.jitter = opts.jitterMs ?? 0;
+    this.maxPayloadBytes = opts.maxPayloadBytes ?? Number.POSITIVE_INFINITY;
     if (!(this.latency >= 0) || !(this.jitter >= 0)) throw new Error('MemoryNetwork: latencyMs and jitterMs must be ≥ 0');
     let seed = 12345;
     this.random =
@@ -87,7 +101,10 @@ export class MemoryNetwork {
   }
 
   /** The TransportFactory clients use to reach this network's listeners. */
-  readonly transport: TransportFactory = (url: string, handlers: TransportHandlers): Transport => {
+  readonly transport: TransportFactory = (url: string, handlers: TransportHandlers): Transport => this.connect(url, handlers);
+
+  /** Opens a link to `url` (what `transport` does); `label` names the peer for the server's logs. */
+  connect(url: string, handlers: TransportHandlers, label?: string): MemoryTransport {
     const n = ++this.connections;
     const clock = this.clock;
     const listener = this.listeners.get(url);
@@ -97,9 +114,19 @@ export class MemoryNetwork {
     let dropped = false;
     const toServer: Direction = { lastDueMs: 0, inFlightBytes: 0 };
     const toClient: Direction = { lastDueMs: 0, inFlightBytes: 0 };
-    let serverMessage: ((d: Uint8Array) => void) | null = null;
+    let serverMessage: ((d: Uint8Array, binary: boolean) => void) | null = null;
     let serverClose: ((code: number, reason: string) => void) | null = null;
-    const early: Uint8Array[] = [];
+    const early: Array<[Uint8Array, boolean]> = [];
+    let stalled = false;
+    const unread: Uint8Array[] = [];
+    // Messages that reached the client; read in order unless it stalls. An abrupt drop loses them.
+    const readUnread = (): void => {
+      while (unread.length > 0 && (dropped || !stalled)) {
+        const data = unread.shift()!;
+        toClient.inFlightBytes -= data.length;
+        if (!dropped) handlers.message(data);
+      }
+    };
 
     const notifyClose = (code: number, reason: string, delayMs: number): void => {
       if (closeNotified) return;
@@ -115,24 +142,25 @@ export class MemoryNetwork {
     };
     const drop = (): void => {
       dropped = true;
+      readUnread();
       notifyClose(1006, 'connection lost', 0);
     };
 
     if (listener === undefined) {
       notifyClose(1006, `connection to ${url} refused`, this.latency);
-      return { send: () => undefined, close: () => undefined, bufferedAmount: () => 0 };
+      return { send: () => undefined, sendText: () => undefined, close: () => undefined, bufferedAmount: () => 0, setStalled: () => undefined };
     }
     this.liveDrops.add(drop);
 
     const peer: MemoryPeer = {
-      label: `memory#${n} ${url}`,
+      label: label ?? `memory#${n} ${url}`,
       send: (data) => {
         if (!open) return;
         const copy = data.slice();
         toClient.inFlightBytes += copy.length;
         clock.setTimer(this.dueAt(toClient), () => {
-          toClient.inFlightBytes -= copy.length;
-          if (!dropped) handlers.message(copy);
+          unread.push(copy);
+          readUnread();
         });
       },
       close: (code = 1000, reason = '') => {
@@ -140,7 +168,7 @@ export class MemoryNetwork {
       },
       onMessage: (fn) => {
         serverMessage = fn;
-        for (const d of early.splice(0)) fn(d);
+        for (const [d, binary] of early.splice(0)) fn(d, binary);
       },
       onClose: (fn) => {
         serverClose = fn;
@@ -156,22 +184,33 @@ export class MemoryNetwork {
       if (!closeNotified) handlers.open();
     });
 
+    const sendToServer = (data: Uint8Array, binary: boolean): void => {
+      if (!open) return;
+      if (data.length > this.maxPayloadBytes) {
+        notifyClose(1009, 'Max payload size exceeded', this.latency);
+        return;
+      }
+      const copy = data.slice();
+      toServer.inFlightBytes += copy.length;
+      clock.setTimer(this.dueAt(toServer), () => {
+        toServer.inFlightBytes -= copy.length;
+        if (dropped) return;
+        if (serverMessage) serverMessage(copy, binary);
+        else early.push([copy, binary]);
+      });
+    };
+
     return {
-      send: (data: Uint8Array) => {
-        if (!open) return;
-        const copy = data.slice();
-        toServer.inFlightBytes += copy.length;
-        clock.setTimer(this.dueAt(toServer), () => {
-          toServer.inFlightBytes -= copy.length;
-          if (dropped) return;
-          if (serverMessage) serverMessage(copy);
-          else early.push(copy);
-        });
-      },
+      send: (data) => sendToServer(data, true),
+      sendText: (text) => sendToServer(new TextEncoder().encode(text), false),
       close: (code = 1000, reason = '') => {
         if (open) notifyClose(code, reason, this.latency);
       },
       bufferedAmount: () => toServer.inFlightBytes,
+      setStalled: (s) => {
+        stalled = s;
+        readUnread();
+      },
     };
-  };
+  }
 }

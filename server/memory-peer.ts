@@ -7,13 +7,13 @@ export interface MemoryPeerLike {
   readonly label: string;
   send(data: Uint8Array): void;
   close(code?: number, reason?: string): void;
-  onMessage(fn: (data: Uint8Array) => void): void;
+  onMessage(fn: (data: Uint8Array, binary: boolean) => void): void;
   onClose(fn: (code: number, reason: string) => void): void;
   isOpen(): boolean;
   bufferedAmount(): number;
 }
 
-/** Wraps a MemoryNetwork peer as a ServerConnection (every message is binary; closes are reported once). */
+/** Wraps a MemoryNetwork peer as a ServerConnection (closes are reported once). */
 export function memoryPeerConnection(peer: MemoryPeerLike): ServerConnection {
   return {
     remote: peer.label,
@@ -23,7 +23,7 @@ export function memoryPeerConnection(peer: MemoryPeerLike): ServerConnection {
     close: (code, reason) => peer.close(code, clampCloseReason(reason)),
     attach(handlers: ConnectionHandlers) {
       let closed = false;
-      peer.onMessage((data) => handlers.message(data, true));
+      peer.onMessage((data, binary) => handlers.message(data, binary));
       peer.onClose((code, reason) => {
         if (closed) return;
         closed = true;

@@ -1,12 +1,11 @@
 // In-process server harness for tests: a GameServer on a ManualClock with real Simulations, and protocol-level test
-// clients over memory links that decode every server message and snapshot (acking them) exactly as a client would.
+// clients over its MemoryNetwork that decode every server message and snapshot (acking them) exactly as a client would.
 import '../../server/physics-node.ts';
 import type { SessionLimits } from '../../server/client-session.ts';
 import { GameServer } from '../../server/game-server.ts';
 import { silentLogger } from '../../server/logger.ts';
-import { createMemoryLink, type MemoryClientEnd } from '../../server/memory-link.ts';
 import { memoryPeerConnection } from '../../server/memory-peer.ts';
-import { MemoryNetwork, type MemoryNetworkOptions } from '../../sdk/index.ts';
+import { MemoryNetwork, type MemoryNetworkOptions, type MemoryTransport } from '../../sdk/index.ts';
 import { createMetrics } from '../../server/metrics.ts';
 import { createRoomFactory, type ScenarioSource } from '../../server/room-factory.ts';
 import type { Room } from '../../server/room.ts';
@@ -53,7 +52,7 @@ export interface HarnessOptions {
 
 /** A protocol-level client: records every decoded message; decodes and acks snapshots. */
 export class TestClient {
-  readonly end: MemoryClientEnd;
+  readonly end: MemoryTransport;
   readonly messages: ServerMessage[] = [];
   readonly frames: QuantizedFrame[] = [];
   readonly events: SimEvent[] = [];
@@ -63,10 +62,8 @@ export class TestClient {
   decoder: SnapshotDecoder | null = null;
   autoAck = true;
 
-  constructor(end: MemoryClientEnd) {
-    this.end = end;
-    end.onMessage((data) => this.receive(data));
-    end.onClose((code, reason) => (this.closed = { code, reason }));
+  constructor(net: MemoryNetwork, url: string, label: string) {
+    this.end = net.connect(url, { open: () => {}, message: (data) => this.receive(data), close: (code, reason) => (this.closed = { code, reason }) }, label);
   }
 
   private receive(data: Uint8Array): void {
@@ -125,7 +122,7 @@ export class TestClient {
 export interface Harness {
   clock: ManualClock;
   server: GameServer;
-  /** Opens a link and wraps its client end (no hello sent). */
+  /** Opens a link to the server and wraps its client end (no hello sent); the server sees it on the next clock run. */
   connect(remote?: string): TestClient;
   /** Connects, says hello and advances until the welcome arrives. */
   join(name: string, room?: string | null): Promise<TestClient>;
@@ -170,13 +167,13 @@ export async function startHarness(opts: HarnessOptions): Promise<Harness> {
   };
   for (const r of server.rooms.all()) watch(r);
   let n = 0;
+  const links = new MemoryNetwork(clock, { latencyMs: opts.latencyMs ?? 0, maxPayloadBytes: opts.maxPayloadBytes });
+  links.listen(MEMORY_URL, (peer) => server.accept(memoryPeerConnection(peer)));
   const h: Harness = {
     clock,
     server,
     connect(remote) {
-      const link = createMemoryLink({ clock, latencyMs: opts.latencyMs ?? 0, remote: remote ?? `test-${++n}`, maxPayloadBytes: opts.maxPayloadBytes });
-      server.accept(link.server);
-      return new TestClient(link.client);
+      return new TestClient(links, MEMORY_URL, remote ?? `test-${++n}`);
     },
     async settle(done, maxTurns = 2000) {
       for (let i = 0; i < maxTurns && !done(); i++) {
