@@ -5,6 +5,7 @@ import type { Clock, TimerHandle } from '../shared/clock.ts';
 import { BotScript } from '../shared/sim/bots.ts';
 import { NEUTRAL_INPUT } from '../shared/sim/input.ts';
 import { SystemClock } from '../server/clock.ts';
+import { TICK_MS } from '../shared/tick-rate.ts';
 
 /** Options of runBots. */
 export interface BotsOptions {
@@ -54,8 +55,6 @@ export interface BotsRun {
   done: Promise<BotsReport>;
   stop(): void;
 }
-
-const TICK_MS = 1000 / 60;
 
 /** Starts `count` bots; resolves when the time is up (or stop() is called) with a per-bot report. */
 export function startBots(opts: BotsOptions): BotsRun {

@@ -10,6 +10,8 @@ import { PROGRAM } from './usage.ts';
 
 /** Default checkpoint interval of recorded logs (ticks). */
 export const DEFAULT_CHECKPOINT_EVERY = 600;
+/** Ticks between two waits for the log's queued writes (and progress-bar updates) while recording. */
+const SETTLE_EVERY_TICKS = 60;
 
 async function run(args: ParsedArgs, io: CliIo): Promise<number> {
   const def = scenarioNamed(args.string('scenario')!);
@@ -40,7 +42,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
     const t0 = performance.now();
     for (let t = 0; t < ticks; t++) {
       log.step(bots.next());
-      if (t % 60 === 59) {
+      if (t % SETTLE_EVERY_TICKS === SETTLE_EVERY_TICKS - 1) {
         await log.writer.settled(); // lets queued writes reach the file: memory stays bounded
         bar.update((t + 1) / ticks, `tick ${t + 1}/${ticks}`);
       }

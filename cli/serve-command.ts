@@ -1,6 +1,7 @@
 // `serve [--port 8080] [--host 127.0.0.1] [--scenario NAME] [--param k=v] [--snapshot-rate 30] [--record DIR]
 // [--max-clients N]`: runs the networked server (HTTP + WebSocket on one port) until SIGINT/SIGTERM.
 import { DEFAULT_SCENARIO } from '../scenarios/index.ts';
+import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import { runServe } from './serve.ts';
 import type { ParsedArgs } from './args.ts';
 import { UsageError, type CliIo, type CommandSpec } from './command.ts';
@@ -53,7 +54,7 @@ export const serveCommand: CommandSpec = {
     { name: 'scenario', kind: 'string', valueName: 'NAME', description: `scenario of the default room; default ${DEFAULT_SCENARIO}` },
     { name: 'param', kind: 'pair', valueName: 'k=v', description: 'scenario parameter (repeatable)' },
     { name: 'seed', kind: 'string', valueName: 'SEED', description: 'simulation seed of every room; default 1' },
-    { name: 'snapshot-rate', kind: 'int', valueName: 'HZ', description: 'snapshots per second per client (1-60); default 30', min: 1, max: 60 },
+    { name: 'snapshot-rate', kind: 'int', valueName: 'HZ', description: `snapshots per second per client (1-${TICK_RATE_HZ}); default 30`, min: 1, max: TICK_RATE_HZ },
     { name: 'record', kind: 'string', valueName: 'DIR', description: "write every room's input log into DIR" },
     { name: 'max-clients', kind: 'int', valueName: 'N', description: 'most clients per room; default 32', min: 1, max: 1000 },
     { name: 'max-rooms', kind: 'int', valueName: 'N', description: 'most rooms at once (each is a Jolt world in the 128 MB heap); default 6', min: 1, max: 32 },

@@ -5,6 +5,7 @@ import { BODY_STATE_STRIDE, BodyFlag, type Vec3Like } from '../shared/physics/in
 import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '../shared/sim/types.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
+import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import { InputBuffer, OfferResult } from './input-buffer.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
@@ -127,8 +128,6 @@ interface Player {
   /** True once the join has gone into a record. */
   inWorld: boolean;
 }
-
-const TICK_RATE_HZ = 60;
 
 /** A running room; build it with `new Room(sim, opts)` and call start(). */
 export class Room {

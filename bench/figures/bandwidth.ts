@@ -4,6 +4,7 @@
 import { createSnapshotFormat, dequantizeFrame, encodeServerMessage, framesEqual, quantizeFrame, SnapshotDecoder, SnapshotEncoder, type QuantizedFrame, type SnapshotView } from '../../shared/protocol/index.ts';
 import { getScenario } from '../../scenarios/index.ts';
 import { BodyFlag } from '../../shared/physics/index.ts';
+import { TICK_MS, TICK_RATE_HZ } from '../../shared/tick-rate.ts';
 import { ColyseusStream, naiveSnapshotBytes } from '../lib/baseline-encoders.ts';
 import type { FigureImpl, FigureOutput } from '../lib/figure.ts';
 import { botRecords, createSceneSim, CUBES_SCENE } from '../lib/scenes.ts';
@@ -12,7 +13,7 @@ import { kbps, wsFrameBytes } from '../lib/wire.ts';
 
 const RATES_HZ = [60, 30, 20] as const;
 const RTT_MS = 100;
-const RTT_TICKS = Math.round(RTT_MS / (1000 / 60));
+const RTT_TICKS = Math.round(RTT_MS / TICK_MS);
 const GOAL_KBPS = 128;
 
 interface OurStream {
@@ -33,14 +34,14 @@ interface OurStream {
 function due(s: OurStream): boolean {
   // The room's rule: a frame goes out on ticks where the running count crosses a whole number.
   s.accumulator += s.rateHz;
-  if (s.accumulator + 1e-9 < 60) return false;
-  s.accumulator -= 60;
+  if (s.accumulator + 1e-9 < TICK_RATE_HZ) return false;
+  s.accumulator -= TICK_RATE_HZ;
   return true;
 }
 
 async function run(opts: { quick: boolean; log(m: string): void }): Promise<FigureOutput> {
   const seconds = opts.quick ? 20 : 60;
-  const ticks = seconds * 60;
+  const ticks = seconds * TICK_RATE_HZ;
   const def = getScenario(CUBES_SCENE.scenario);
   const sim = await createSceneSim(CUBES_SCENE);
   try {

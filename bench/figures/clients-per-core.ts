@@ -2,13 +2,14 @@
 // process (N client-library players on loopback WebSockets). N climbs a ladder until a window's tick p99 exceeds
 // 16.7 ms or more than 1% of snapshots are skipped; the largest passing N is the figure.
 import { fileURLToPath } from 'node:url';
+import { TICK_MS } from '../../shared/tick-rate.ts';
 import { nextJson, sendLine, startNode, stopChild, type Child } from '../lib/child.ts';
 import type { FigureImpl, FigureOutput } from '../lib/figure.ts';
 import { CROWD_SCENE } from '../lib/scenes.ts';
 import { quantile, round } from '../lib/stats.ts';
 
 const GOAL = 256;
-const TICK_BUDGET_MS = 1000 / 60;
+const TICK_BUDGET_MS = TICK_MS;
 const MAX_SKIPPED_SHARE = 0.01;
 const SNAPSHOT_RATE_HZ = 30;
 const SERVER = fileURLToPath(new URL('../procs/bench-server.ts', import.meta.url));

@@ -7,6 +7,7 @@ import { silentLogger } from '../../server/logger.ts';
 import { createMetrics } from '../../server/metrics.ts';
 import { startServer } from '../../server/start-server.ts';
 import type { InputCommand } from '../../shared/sim/input.ts';
+import { TICK_MS } from '../../shared/tick-rate.ts';
 import { runToEnd, startNode } from '../lib/child.ts';
 import type { FigureImpl, FigureOutput } from '../lib/figure.ts';
 import { round, roundSummary, summarize } from '../lib/stats.ts';
@@ -102,7 +103,7 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
             { label: 'arrival → applied (p99)', value: ms.p99, series: 'ours' },
             { label: 'sent → seen in snapshot (median)', value: rtt.median, series: 'other' },
             { label: 'sent → seen in snapshot (p99)', value: rtt.p99, series: 'other' },
-            { label: 'one tick', value: 1000 / 60, series: 'raw' },
+            { label: 'one tick', value: TICK_MS, series: 'raw' },
           ],
         },
       ],

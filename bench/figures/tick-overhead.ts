@@ -1,6 +1,7 @@
 // Tick overhead: for cubes-901 and the 1000-body shape-rain pile, the raw PhysicsWorld step loop against the full
 // server tick over the same ticks (arrived inputs and acks, the room's record, characters, bullets, sensor events,
 // the input log with a state hash every tick, snapshot encoding for 1, 16 and 64 clients), in alternating batches.
+import { TICK_RATE_HZ } from '../../shared/tick-rate.ts';
 import type { ChartBar, FigureImpl, FigureOutput, ReportRow } from '../lib/figure.ts';
 import { rawStepBatch } from '../lib/raw-step.ts';
 import { CUBES_SCENE, createSceneSim, PILE_READY_TICK, PILE_SCENE, stepEmptyTo, type Scene } from '../lib/scenes.ts';
@@ -95,7 +96,7 @@ async function measure(scene: Scene, startBytes: Uint8Array | null, clients: num
         events: partMedian('events'),
         other: round(median(other), 4),
       },
-      downstreamKbpsPerClient: round(kbps(after.bytesPerClient - before.bytesPerClient, (batches * (batchTicks + 1)) / 60), 1),
+      downstreamKbpsPerClient: round(kbps(after.bytesPerClient - before.bytesPerClient, (batches * (batchTicks + 1)) / TICK_RATE_HZ), 1),
     };
   } finally {
     await rig.close();

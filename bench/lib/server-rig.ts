@@ -19,9 +19,8 @@ import type { Clock, TimerHandle } from '../../shared/clock.ts';
 import { decodeServerMessage, encodeClientMessage, PROTOCOL_VERSION, readSnapshotHeader } from '../../shared/protocol/index.ts';
 import { BotScript } from '../../shared/sim/bots.ts';
 import { Simulation } from '../../shared/sim/simulation.ts';
+import { TICK_MS, TICK_RATE_HZ } from '../../shared/tick-rate.ts';
 import { wsFrameBytes } from './wire.ts';
-
-const TICK_MS = 1000 / 60;
 
 /**
  * Time for the server's rate limiters, advanced by the rig one tick at a time. Its timers never fire: the rig runs
@@ -153,7 +152,7 @@ async function createRigRecorder(dir: string, scenario: string, params: Readonly
     scenario,
     params: { ...params },
     seed: 1,
-    tickRateHz: 60,
+    tickRateHz: TICK_RATE_HZ,
     hashEveryTicks,
     checkpointEveryTicks: 0,
     createdBy: 'bench tick-overhead',

@@ -4,6 +4,7 @@
 // Run: node bench/procs/bot-swarm.ts WS_URL CLIENTS SETTLE_MS WINDOW_MS
 import { connect, type NetClient } from '../../sdk/index.ts';
 import { BotScript } from '../../shared/sim/bots.ts';
+import { TICK_MS } from '../../shared/tick-rate.ts';
 
 const [url, nArg, settleArg, windowArg] = process.argv.slice(2);
 const n = Number(nArg);
@@ -34,7 +35,7 @@ const script = new BotScript({ seed: 7, bots: n, joinTicks: clients.map(() => 0)
 const steer = setInterval(() => {
   const record = script.next();
   for (let i = 0; i < record.commands.length; i++) clients[i].setInput(record.commands[i].input);
-}, 1000 / 60);
+}, TICK_MS);
 
 const totals = (): { snapshots: number; failed: number; bytesIn: number; closed: number } => {
   let snapshots = 0;

@@ -9,7 +9,7 @@ export { CharacterController, type CharacterOptions, type GroundState } from './
 export { distanceLink, hingeLink, pointLink, sliderLink } from './constraints.ts';
 export { createJoltInstance, getJolt, initializePhysics, isPhysicsInitialized, loadJolt, setDefaultPhysicsInitOptions, type JoltModule, type PhysicsInitOptions } from './jolt-backend.ts';
 export { CollisionLayer, layersInteract, makeBroadPhaseFilter, makeObjectLayerFilter, type CollisionLayerName } from './layers.ts';
-export { FIXED_DT_SECONDS, PhysicsWorld, type PhysicsWorldOptions } from './physics-world.ts';
+export { PhysicsWorld, type PhysicsWorldOptions } from './physics-world.ts';
 export { type RayHit } from './queries.ts';
 export { type SensorEvent } from './sensors.ts';
 export { buildShape, estimateShapeBytes } from './shapes.ts';

@@ -2,6 +2,7 @@
 // limits. Owns every Jolt object it creates; callers only ever see plain copies and BodyHandles.
 import { checkQuat, checkVec3, STATIC_ONLY_KINDS, validateShapeSpec, type ShapeSpec } from '../physics-data/shape-spec.ts';
 import { IDENTITY_QUAT, type QuatLike, type Vec3Like } from '../physics-data/vectors.ts';
+import { TICK_DT_SECONDS } from '../tick-rate.ts';
 import { BodyHandle, type BodyRole, type JoltBody } from './body-handle.ts';
 import { createJoltInstance, loadJolt, type JoltModule } from './jolt-backend.ts';
 import { createLayerFilters, type LayerFilters } from './layers.ts';
@@ -19,8 +20,6 @@ import { ensureHeapRoom, ensureRoomForWorld, estimateStateSaveBytes, resolveWorl
 
 export type { PhysicsWorldOptions } from './world-limits.ts';
 
-/** The fixed tick the server runs: 60 Hz. */
-export const FIXED_DT_SECONDS = 1 / 60;
 const MAX_STEP_SECONDS = 1 / 30;
 const SUBSTEP_THRESHOLD_SECONDS = 1 / 55;
 /** Heap bytes reserved per constraint (measured ≤ 700 B for a hinge). */
@@ -116,10 +115,10 @@ export class PhysicsWorld {
     return this.deliverSensorEvents();
   }
 
-  /** The server's fixed tick: exactly 1/60 s with one collision step. */
+  /** The server's fixed tick: exactly TICK_DT_SECONDS (1/60 s) with one collision step. */
   stepFixed(): SensorEvent[] {
     this.live();
-    this.joltInterface.Step(FIXED_DT_SECONDS, 1);
+    this.joltInterface.Step(TICK_DT_SECONDS, 1);
     return this.deliverSensorEvents();
   }
 
@@ -421,7 +420,7 @@ export class PhysicsWorld {
   }
 
   /** Moves a kinematic body so it reaches pos/rot after dtSeconds (velocity-based: pushes dynamics). */
-  moveKinematic(b: BodyHandle | number, pos: Vec3Like, rot: QuatLike | null, dtSeconds: number = FIXED_DT_SECONDS): void {
+  moveKinematic(b: BodyHandle | number, pos: Vec3Like, rot: QuatLike | null, dtSeconds: number = TICK_DT_SECONDS): void {
     motion.moveKinematic(this, this.handleOf(b, 'moveKinematic'), pos, rot, dtSeconds);
   }
 

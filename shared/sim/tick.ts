@@ -1,12 +1,13 @@
 // One 60 Hz tick, in the documented order (docs/simulation.md): leaves → joins → commands (walk, jump, fire) →
 // characters move → physics step → scenario onTick → bullet expiry and bounds → sensor events → onEvents.
 import { IDENTITY_QUAT, type Vec3Like } from '../physics/index.ts';
+import { TICK_DT_SECONDS } from '../tick-rate.ts';
 import { makeRecord, playerColor } from './body-registry.ts';
 import { BULLET_SHAPE, bulletOptions, muzzlePosition } from './bullets.ts';
 import { applyCommand, CHARACTER_SHAPE, createCharacter, newPlayer, type Player } from './players.ts';
 import { assertRegistryInSync, createBody, destroyBody, sensorSimEvents, type SimCore } from './sim-core.ts';
 import { validateTickRecord } from './tick-record.ts';
-import { TICK_DT_SECONDS, type PlayerCommand, type PlayerJoin, type SimEvent, type TickInputRecord } from './types.ts';
+import type { PlayerCommand, PlayerJoin, SimEvent, TickInputRecord } from './types.ts';
 
 function checkSpawnPoint(core: SimCore, joinIndex: number): Vec3Like {
   const p = core.instance.spawnPoint(joinIndex);

@@ -3,11 +3,6 @@
 import type { Vec3Like } from '../physics/index.ts';
 import type { InputCommand } from './input.ts';
 
-/** Ticks per second of every simulation. */
-export const TICK_RATE_HZ = 60;
-/** Seconds per tick. */
-export const TICK_DT_SECONDS = 1 / TICK_RATE_HZ;
-
 /** A player entering on this tick. Player ids are chosen by the host (server or recorder), unique per session. */
 export interface PlayerJoin {
   playerId: number;

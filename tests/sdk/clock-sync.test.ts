@@ -3,8 +3,8 @@
 import { describe, expect, it } from 'vitest';
 import { ClockSync } from '../../sdk/clock-sync.ts';
 import { Prng } from '../../shared/sim/prng.ts';
+import { TICK_MS } from '../../shared/tick-rate.ts';
 
-const TICK_MS = 1000 / 60;
 
 /** A server whose clock runs `offsetMs` ahead of ours and whose tick n completes at server time anchor + n·TICK_MS. */
 function pong(localSendMs: number, upMs: number, downMs: number, offsetMs: number, anchorMs: number): { sentLocalMs: number; receivedLocalMs: number; serverTick: number; serverTimeMs: number } {

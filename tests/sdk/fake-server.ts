@@ -13,8 +13,8 @@ import { SnapshotEncoder } from '../../shared/protocol/snapshot-stream.ts';
 import { decodeClientMessage } from '../../shared/protocol/validation.ts';
 import { NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input.ts';
 import type { BodyDescriptor, CharacterState, SimEvent } from '../../shared/sim/types.ts';
+import { TICK_MS } from '../../shared/tick-rate.ts';
 
-const TICK_MS = 1000 / 60;
 const BOUNDS = { min: { x: -100, y: -10, z: -100 }, max: { x: 100, y: 50, z: 100 } };
 /** The server's clock reads this much more than the shared ManualClock (a different origin). */
 export const SERVER_CLOCK_OFFSET_MS = 777_777;

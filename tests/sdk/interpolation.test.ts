@@ -6,8 +6,8 @@ import { InterpolationBuffer, slerpInto, type InterpolatedFrame } from '../../sd
 import type { SnapshotView } from '../../shared/protocol/snapshot-frame.ts';
 import { Prng } from '../../shared/sim/prng.ts';
 import type { CharacterState } from '../../shared/sim/types.ts';
+import { TICK_MS } from '../../shared/tick-rate.ts';
 
-const TICK_MS = 1000 / 60;
 
 /** Body 1 moves +1 m/tick along x and spins about y at 0.05 rad/tick; body 2 sits still; character 7 walks along z. */
 function snap(tick: number, opts: { ids?: number[] } = {}): SnapshotView {

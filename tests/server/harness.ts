@@ -23,12 +23,13 @@ import { ManualClock } from '../../shared/clock.ts';
 import type { InputCommand } from '../../shared/sim/input.ts';
 import type { ScenarioDefinition } from '../../shared/sim/scenario.ts';
 import type { SimEvent, TickInputRecord } from '../../shared/sim/types.ts';
+import { TICK_MS } from '../../shared/tick-rate.ts';
+
+/** One tick period in ms (tests import it from here). */
+export { TICK_MS };
 
 /** The URL the harness's MemoryNetwork listens on. */
 export const MEMORY_URL = 'ws://memory.test/';
-
-/** One tick period in ms. */
-export const TICK_MS = 1000 / 60;
 
 /** A scenario source over a fixed list. */
 export function scenarioList(defs: readonly ScenarioDefinition[]): ScenarioSource {
