@@ -31,15 +31,15 @@ function replayInProcess(file: string): Promise<RunResult> {
     child.on('error', reject);
     child.on('close', (code) => {
       const stderr = Buffer.concat(err).toString('utf8').trim();
-      let parsed: Record<string, unknown>;
+      // `replay --json --hashes` prints its ReplayReport plus the per-tick hashes and the speed.
+      let parsed: RunResult['report'] & { hashes?: string[]; msPerTick?: number };
       try {
-        parsed = JSON.parse(Buffer.concat(out).toString('utf8')) as Record<string, unknown>;
+        parsed = JSON.parse(Buffer.concat(out).toString('utf8'));
       } catch {
         reject(new Error(`replay process exited with code ${code}: ${stderr || 'no output'}`));
         return;
       }
-      const report = parsed as unknown as RunResult['report'];
-      resolve({ status: report.status, hashes: (parsed.hashes as string[]) ?? [], msPerTick: Number(parsed.msPerTick), report });
+      resolve({ status: parsed.status, hashes: parsed.hashes ?? [], msPerTick: Number(parsed.msPerTick), report: parsed });
     });
   });
 }
