@@ -15,7 +15,8 @@ export function rawStepBatch(sim: Simulation, ticks: number): number[] {
       world.stepFixed();
       times.push(performance.now() - t0);
     }
-    world.sensorHub.drain(); // sensor transitions of the raw steps belong to no tick
+    // stepFixed() hands back the raw steps' sensor transitions (they belong to no tick: dropped here), and the
+    // restore puts the sensor overlaps back as they were.
     sim.restoreCheckpoint(cp);
   } finally {
     cp.dispose();

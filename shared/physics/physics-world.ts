@@ -27,6 +27,45 @@ const CONSTRAINT_HEAP_BYTES = 4096;
 
 type J = JoltModule;
 
+/** What a tracked body is, as PhysicsWorld's factories and the character controller register it. */
+export interface TrackInfo {
+  motion: MotionKind;
+  layer: number;
+  mask: number;
+  isSensor: boolean;
+  role: BodyRole;
+  shape: ShapeSpec | undefined;
+  opts: BodyOptions;
+}
+
+/**
+ * The part of a world that is not public API: the rest of shared/physics (characters, queries) and, through
+ * shared/physics/internal.ts, shared/sim's checkpoints and tick use it. index.ts does not export it.
+ */
+export interface WorldInternals {
+  /** Deterministic Jolt BodyID allocation (checkpoints save and restore it). */
+  readonly slots: BodySlots;
+  /** Per-world helpers (ray casts, characters) register cleanups here. */
+  readonly disposers: Set<() => void>;
+  /** The sensor hub (checkpoints export/import its open overlaps; the simulation drains it). */
+  readonly sensorHub: SensorHub;
+  /** Registers a Jolt body (also character inner bodies) under the next stable id, or under `id`. */
+  track(body: JoltBody, info: TrackInfo, id?: number): BodyHandle;
+  /** Forgets a body without touching Jolt (the character controller removes its own inner body). */
+  untrack(handle: BodyHandle): void;
+  /** The handle for a Jolt BodyID index+sequence number. */
+  bodyByJoltId(joltId: number): BodyHandle | undefined;
+  /** Restores the id counter (checkpoint restore). */
+  setNextBodyId(next: number): void;
+}
+
+let internalsOf: (world: PhysicsWorld) => WorldInternals;
+
+/** A world's internals (see WorldInternals): for shared/physics and shared/sim only. */
+export function worldInternals(world: PhysicsWorld): WorldInternals {
+  return internalsOf(world);
+}
+
 /** A Jolt world with stable body ids; create it with `await PhysicsWorld.create()`. */
 export class PhysicsWorld {
   readonly jolt: J;
@@ -35,8 +74,7 @@ export class PhysicsWorld {
   readonly filters: LayerFilters;
   readonly maxBodies: number;
   readonly minFreeHeapBytes: number;
-  /** @internal Deterministic Jolt BodyID allocation (checkpoints save and restore it). */
-  readonly slots: BodySlots;
+  private readonly slots: BodySlots;
   private readonly joltInterface: InstanceType<J['JoltInterface']>;
   private readonly table = new BodyTable();
   private readonly constraints: ConstraintRegistry;
@@ -48,8 +86,12 @@ export class PhysicsWorld {
   private rays: RayQueries | null = null;
   private destroyed = false;
   private readonly stateReader: BodyStateReader;
-  /** @internal Per-world helpers (ray casts, characters) register cleanups here. */
-  readonly disposers = new Set<() => void>();
+  private readonly disposers = new Set<() => void>();
+  private readonly internals: WorldInternals;
+
+  static {
+    internalsOf = (world) => world.internals;
+  }
 
   private constructor(J: J, limits: WorldLimits, gravity: Vec3Like) {
     this.jolt = J;
@@ -76,6 +118,17 @@ export class PhysicsWorld {
       isSensorJoltId: (joltId) => this.table.isSensorJoltId(joltId),
       isStaticJoltId: (joltId) => this.table.byJoltId(joltId)?.motion === 'static',
     });
+    this.internals = {
+      slots: this.slots,
+      disposers: this.disposers,
+      sensorHub: this.sensors,
+      track: (body, info, id) => this.track(body, info, id),
+      untrack: (handle) => this.untrack(handle),
+      bodyByJoltId: (joltId) => this.table.byJoltId(joltId),
+      setNextBodyId: (next) => {
+        this.nextBodyId = next;
+      },
+    };
     this.setGravity(gravity.x, gravity.y, gravity.z);
   }
 
@@ -279,8 +332,7 @@ export class PhysicsWorld {
     return handle;
   }
 
-  /** @internal Registers a Jolt body (also character inner bodies) under the next stable id. */
-  track(body: JoltBody, info: { motion: MotionKind; layer: number; mask: number; isSensor: boolean; role: BodyRole; shape: ShapeSpec | undefined; opts: BodyOptions }, id: number = this.nextBodyId++): BodyHandle {
+  private track(body: JoltBody, info: TrackInfo, id: number = this.nextBodyId++): BodyHandle {
     const joltId = body.GetID().GetIndexAndSequenceNumber();
     const handle = new BodyHandle({
       J: this.jolt,
@@ -302,8 +354,7 @@ export class PhysicsWorld {
     return handle;
   }
 
-  /** @internal Forgets a body without touching Jolt (the character controller removes its own inner body). */
-  untrack(handle: BodyHandle): void {
+  private untrack(handle: BodyHandle): void {
     this.sensors.forgetBody(handle.joltId);
     this.slots.release(handle.joltId);
     this.table.delete(handle);
@@ -365,34 +416,19 @@ export class PhysicsWorld {
     return this.table.get(id);
   }
 
-  /** @internal The handle for a Jolt BodyID index+sequence number. */
-  bodyByJoltId(joltId: number): BodyHandle | undefined {
-    return this.table.byJoltId(joltId);
-  }
-
   /** Stable ids of every tracked body, ascending (a copy). */
   bodyIds(): number[] {
     return this.table.sortedIds.slice();
   }
 
-  /** The id the next body will get; with setNextBodyId, lets checkpoints restore id allocation. */
+  /** The id the next body will get (checkpoints save it and restore it through WorldInternals.setNextBodyId). */
   get nextId(): number {
     return this.nextBodyId;
-  }
-
-  /** @internal Restores the id counter (checkpoint restore). */
-  setNextBodyId(next: number): void {
-    this.nextBodyId = next;
   }
 
   /** Stable ids of bodies currently overlapping a sensor, ascending. */
   sensorOverlaps(sensor: BodyHandle | number): number[] {
     return this.sensors.overlapping(typeof sensor === 'number' ? sensor : sensor.id);
-  }
-
-  /** @internal The sensor hub (checkpoints export/import its open overlaps). */
-  get sensorHub(): SensorHub {
-    return this.sensors;
   }
 
   // ── motion control ────────────────────────────────────────────────────────────────────────────────────────
@@ -434,7 +470,7 @@ export class PhysicsWorld {
   private queries(): RayQueries {
     this.live();
     if (!this.rays) {
-      const rays = new RayQueries(this);
+      const rays = new RayQueries(this, (joltId) => this.table.byJoltId(joltId));
       this.rays = rays;
       this.disposers.add(() => {
         rays.dispose();

@@ -1,6 +1,7 @@
 // Simulation: one deterministic session of a scenario — a PhysicsWorld, the seeded Prng, the 60 Hz tick counter,
 // the player table, body descriptors and events — with state hashes, divergence reports and checkpoints.
 import { PhysicsWorld, type PhysicsWorldOptions } from '../physics/index.ts';
+import { worldInternals } from '../physics/internal.ts';
 import { BodyRegistry } from './body-registry.ts';
 import { BulletList } from './bullets.ts';
 import { captureData, restoreCheckpoint, saveCheckpoint, type Checkpoint } from './checkpoint.ts';
@@ -100,7 +101,7 @@ export class Simulation {
     }
     const core: SimCore = Object.assign(base, { ctx, instance });
     for (const r of core.registry.all()) core.buildRecords.set(r.id, r);
-    core.carriedSensor = world.sensorHub.drain();
+    core.carriedSensor = worldInternals(world).sensorHub.drain();
     core.phase = 'idle';
     return new Simulation(core);
   }
