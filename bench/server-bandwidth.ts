@@ -5,6 +5,7 @@
 import WebSocket from 'ws';
 import { silentLogger } from '../server/logger.ts';
 import { startServer } from '../server/start-server.ts';
+import { TICK_MS } from '../shared/tick-rate.ts';
 import {
   decodeServerMessage,
   encodeClientMessage,
@@ -113,7 +114,7 @@ const driver = setInterval(() => {
   const yaw = n < 150 ? 0 : ((n - 150) * 136) % 65536;
   send(clients[0].ws, { type: 'input', firstTick: tick, commands: [{ moveX: 0, moveZ: 127, yaw, pitch: 0, buttons: 4 }] });
   for (let i = 1; i < clients.length; i++) send(clients[i].ws, { type: 'input', firstTick: tick, commands: [{ moveX: (i * 37) % 255 - 127, moveZ: 60, yaw: (i * 9000) % 65536, pitch: 0, buttons: 0 }] });
-}, 1000 / 60);
+}, TICK_MS);
 
 await new Promise((r) => setTimeout(r, warmupSeconds * 1000));
 for (const c of clients) c.measuring = true;
@@ -156,7 +157,7 @@ const result = {
   firstFullSnapshotBytes: clients[0].firstSnapshotBytes,
   tickMs: { mean: +mean(tickMs).toFixed(3), p50: +quantile(tickMs, 0.5).toFixed(3), p99: +quantile(tickMs, 0.99).toFixed(3), max: +(tickMs.at(-1) ?? 0).toFixed(3) },
   physicsStepMs: { mean: +mean(stepMs).toFixed(3), p50: +quantile(stepMs, 0.5).toFixed(3), p99: +quantile(stepMs, 0.99).toFixed(3) },
-  overrunsOver16_7ms: tickMs.filter((t) => t > 1000 / 60).length,
+  overrunsOver16_7ms: tickMs.filter((t) => t > TICK_MS).length,
 };
 if (json) console.log(JSON.stringify(result));
 else {

@@ -13,6 +13,7 @@ import { SnapshotDecoder, SnapshotEncoder } from '../shared/protocol/snapshot-st
 import { BotScript } from '../shared/sim/bots.ts';
 import { Simulation } from '../shared/sim/simulation.ts';
 import type { TickInputRecord } from '../shared/sim/types.ts';
+import { TICK_MS, TICK_RATE_HZ } from '../shared/tick-rate.ts';
 
 /** Player 1 holds forward and sprints: straight into the field for 2.5 s, then turning a full circle every 8 s. */
 function ploughRecord(tick: number): TickInputRecord {
@@ -26,8 +27,8 @@ function ploughRecord(tick: number): TickInputRecord {
 
 const seconds = Number(process.argv[2] ?? 30);
 const rttMs = Number(process.argv[3] ?? 100);
-const ticks = Math.round(seconds * 60);
-const ackDelayTicks = Math.round(rttMs / (1000 / 60));
+const ticks = Math.round(seconds * TICK_RATE_HZ);
+const ackDelayTicks = Math.round(rttMs / TICK_MS);
 const driver = process.argv[4] ?? 'bot';
 if (driver !== 'bot' && driver !== 'plough') throw new Error(`driver must be bot or plough, got ${driver}`);
 const rates = [60, 30, 20];
@@ -52,7 +53,7 @@ const streams: Stream[] = rates.map((rateHz) => {
   const enc = new SnapshotEncoder(format);
   // The welcome carried every dynamic body alive at tick 0.
   enc.markDescriptorsKnown(sim.descriptors().filter((d) => d.motion !== 'static').map((d) => d.id));
-  return { rateHz, every: 60 / rateHz, enc, dec: new SnapshotDecoder(format), acks: [], samples: [] };
+  return { rateHz, every: TICK_RATE_HZ / rateHz, enc, dec: new SnapshotDecoder(format), acks: [], samples: [] };
 });
 
 let encodeMs = 0;

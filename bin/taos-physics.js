@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// CLI entry: runs server/cli/main.ts on Node 24 (TypeScript type stripping); re-executes with the pinned Node if needed.
+// CLI entry: runs cli/main.ts on Node 24 (TypeScript type stripping); re-executes with the pinned Node if needed.
 import { spawnSync } from 'node:child_process';
 import { createRequire } from 'node:module';
 
@@ -16,5 +16,5 @@ if (major < 24) {
   const result = spawnSync(nodePath, [new URL(import.meta.url).pathname, ...process.argv.slice(2)], { stdio: 'inherit' });
   process.exit(result.status ?? 1);
 }
-const { main } = await import('../server/cli/main.ts');
+const { main } = await import('../cli/main.ts');
 process.exitCode = await main(process.argv.slice(2));

@@ -4,6 +4,7 @@ import type { Vec3Like } from '../shared/physics/index.ts';
 import { walkVelocity } from '../shared/sim/controls.ts';
 import { Button } from '../shared/sim/input.ts';
 import type { ScenarioContext, ScenarioDefinition, ScenarioInstance } from '../shared/sim/scenario.ts';
+import { TICK_DT_SECONDS } from '../shared/tick-rate.ts';
 import { Palette, PROP_COLORS } from './lib/palette.ts';
 import { addGround } from './lib/static-scene.ts';
 
@@ -18,7 +19,6 @@ const SPIN_ACCEL_RAD_PER_SECOND2 = 12;
 const PUSH_ACCEL = 6;
 const PUSH_MAX_SPEED = 6;
 const HOP_SPEED_METRES_PER_SECOND = 5;
-const DT_SECONDS = 1 / 60;
 
 /** 900 small cubes and one player-driven big cube. */
 export const scenario: ScenarioDefinition = {
@@ -86,11 +86,11 @@ export const scenario: ScenarioDefinition = {
         const v = big.linearVelocity();
         if (dir.x !== 0 || dir.z !== 0) {
           // Rolling towards d means spinning about up × d = (d.z, 0, -d.x); approach that spin at a bounded rate.
-          const maxStep = SPIN_ACCEL_RAD_PER_SECOND2 * DT_SECONDS;
+          const maxStep = SPIN_ACCEL_RAD_PER_SECOND2 * TICK_DT_SECONDS;
           const towards = (current: number, goal: number): number => current + Math.max(-maxStep, Math.min(maxStep, goal - current));
           c.world.setAngularVelocity(bigId, { x: towards(w.x, dir.z * SPIN_RAD_PER_SECOND), y: w.y, z: towards(w.z, -dir.x * SPIN_RAD_PER_SECOND) });
           if (v.x * v.x + v.z * v.z < PUSH_MAX_SPEED * PUSH_MAX_SPEED) {
-            const k = BIG_MASS_KG * PUSH_ACCEL * DT_SECONDS;
+            const k = BIG_MASS_KG * PUSH_ACCEL * TICK_DT_SECONDS;
             c.world.addImpulse(bigId, { x: dir.x * k, y: 0, z: dir.z * k });
           }
         }

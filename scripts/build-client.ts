@@ -1,4 +1,5 @@
-// Builds the browser client: esbuild bundles client/app entries into dist/client/ and copies the page assets.
+// Builds the browser page: esbuild bundles the client/app entries (with the sdk/ and shared/ code they import) into
+// dist/client/ and copies the page assets.
 // Idempotent and cheap to call on every start: files are rewritten (atomically) only when their bytes changed.
 import { build, type Metafile } from 'esbuild';
 import { mkdir, readdir, readFile, rename, writeFile } from 'node:fs/promises';

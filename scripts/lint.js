@@ -1,10 +1,12 @@
-// Project lint: the house rules a generic linter can't know (pure shared/, no engine trig, headers, sizes, no enum).
+// Project lint: the house rules a generic linter can't know (pure shared/, no engine trig, headers, sizes, no enum,
+// and the import rules of scripts/import-rules.ts: which folder may import which).
 // Usage: node scripts/lint.js  — prints each violation as file:line: message and exits 1 if any.
 import { readFileSync, readdirSync, statSync } from 'node:fs';
-import { join, relative } from 'node:path';
+import { join, relative, sep } from 'node:path';
+import { checkImports } from './import-rules.ts';
 
 const root = new URL('..', import.meta.url).pathname;
-const roots = ['shared', 'server', 'client', 'scenarios', 'tests', 'bench', 'scripts', 'bin'];
+const roots = ['shared', 'sdk', 'server', 'cli', 'client', 'scenarios', 'tests', 'bench', 'scripts', 'bin'];
 const skipDirs = new Set(['node_modules', 'dist', 'results', 'fixtures']);
 
 function walk(dir, out) {
@@ -42,9 +44,6 @@ for (const file of files) {
     const n = i + 1;
     if (/^\s*(export\s+)?(const\s+)?enum\s/.test(line)) report(file, n, 'no enum: use an `as const` object');
     if (/^export default/.test(line) && !rel.endsWith('vitest.config.ts')) report(file, n, 'named exports only');
-    if (/from ['"]jolt-physics|import\(['"]jolt-physics/.test(line) && !rel.startsWith('shared/physics/')) {
-      report(file, n, 'only shared/physics/ may import jolt-physics');
-    }
     if (isShared) {
       if (/from ['"]node:|require\(|Math\.random\(|Date\.now\(|performance\.now\(|new Date\(|process\.|setTimeout\(|setInterval\(|\bwindow\.|\bdocument\./.test(line)) {
         report(file, n, 'shared/ and scenarios/ are pure and deterministic: no node:*, clocks, timers, Math.random, DOM');
@@ -56,6 +55,9 @@ for (const file of files) {
     }
   });
 }
+
+const sources = files.map((file) => ({ path: relative(root, file).split(sep).join('/'), text: readFileSync(file, 'utf8') }));
+for (const p of checkImports(sources)) problems.push(`${p.file}:${p.line}: ${p.message}`);
 
 if (problems.length > 0) {
   console.error(problems.join('\n'));

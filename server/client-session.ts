@@ -1,25 +1,21 @@
 // One client connection from hello to bye: validates every incoming frame, enforces per-client rate and error limits,
 // joins a room, feeds inputs/acks/pings to it, and sends welcome, events (reliable) and snapshots (skipped when the
 // socket is backed up). Nothing a client sends reaches the room unvalidated or under another player's id.
+import type { Clock, TimerHandle } from '../shared/clock.ts';
 import {
   ByeReason,
-  createSnapshotFormat,
   decodeClientMessage,
   encodeServerMessage,
   ErrorCode,
   MAX_CLIENT_MESSAGE_BYTES,
   PROTOCOL_VERSION,
-  quantizeFrame,
-  SharedFrameWork,
   SnapshotEncoder,
   snapshotFormatSpec,
   type ClientMessage,
-  type QuantizedFrame,
   type ServerMessage,
-  type SnapshotFormat,
 } from '../shared/protocol/index.ts';
 import type { BodyDescriptor, SimEvent } from '../shared/sim/types.ts';
-import type { Clock, TimerHandle } from './clock.ts';
+import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import { CloseCode, type ServerConnection } from './connection.ts';
 import { OfferResult } from './input-buffer.ts';
 import type { Logger } from './logger.ts';
@@ -27,11 +23,6 @@ import type { ServerMetrics } from './metrics.ts';
 import { RateLimiter, type RateLimit } from './rate-limiter.ts';
 import { RoomError, type Room, type RoomMember, type WorldFrame } from './room.ts';
 import type { RoomManager } from './room-manager.ts';
-
-/** Each room's latest quantized frame and the body copies it came from (the next frame's starting point). */
-const lastQuantized = new WeakMap<Room, { bodies: WorldFrame['bodies']; frame: QuantizedFrame }>();
-/** Framed events messages by the room's event list of a tick (the list is never changed after delivery). */
-const eventMessages = new WeakMap<readonly SimEvent[], Uint8Array>();
 
 /** Per-client limits. */
 export interface SessionLimits {
@@ -88,16 +79,6 @@ export interface SessionStats {
   bytesSent: number;
   inputsLate: number;
   inputsTooFar: number;
-}
-
-const formats = new WeakMap<Room, SnapshotFormat>();
-function formatFor(room: Room): SnapshotFormat {
-  let f = formats.get(room);
-  if (!f) {
-    f = createSnapshotFormat(room.bounds);
-    formats.set(room, f);
-  }
-  return f;
 }
 
 let nextSessionId = 1;
@@ -254,7 +235,7 @@ export class ClientSession implements RoomMember {
     this.room = room;
     this.playerId = joined.playerId;
     this.state = 'joined';
-    const format = formatFor(room);
+    const format = room.snapshots.format;
     this.encoder = new SnapshotEncoder(format);
     const dynamicBodies = this.liveDynamicDescriptors(room);
     this.encoder.markDescriptorsKnown(dynamicBodies.map((d) => d.id));
@@ -264,7 +245,7 @@ export class ClientSession implements RoomMember {
       playerId: joined.playerId,
       roomId: room.id,
       tick: room.sim.tick,
-      tickRateHz: 60,
+      tickRateHz: TICK_RATE_HZ,
       snapshotRateHz: room.snapshotRateHz,
       scenario: { name: room.scenarioName, description: room.description, params: { ...room.params }, bounds: room.bounds },
       snapshotFormat: snapshotFormatSpec(format),
@@ -328,15 +309,9 @@ export class ClientSession implements RoomMember {
 
   /** Reliable delivery of one tick's events (RoomMember). */
   deliverEvents(_tick: number, events: readonly SimEvent[]): void {
-    if (this.state !== 'joined') return;
+    if (this.state !== 'joined' || !this.room) return;
     if (this.tooFarBehind()) return;
-    // The room hands every member the same list: frame it once per tick, not once per client.
-    let message = eventMessages.get(events);
-    if (message === undefined) {
-      message = encodeServerMessage({ type: 'events', events: events as SimEvent[] });
-      eventMessages.set(events, message);
-    }
-    this.sendEncoded(message);
+    this.sendEncoded(this.room.snapshots.eventsMessage(events));
   }
 
   /** A snapshot for this client, unless its socket is backed up (RoomMember). */
@@ -351,31 +326,8 @@ export class ClientSession implements RoomMember {
       m.snapshotsSkipped.inc();
       return;
     }
-    const room = this.room;
-    let q = frame.cache.get('quantized') as QuantizedFrame | undefined;
-    if (!q) {
-      // Bodies whose pose has not changed since the room's previous frame keep its integers (one format per room).
-      const last = lastQuantized.get(room);
-      const previous = last !== undefined && last.frame.tick < frame.tick ? { read: last.bodies, frame: last.frame } : undefined;
-      q = quantizeFrame(this.encoder.format, frame.tick, frame.bodies, frame.characters, { includeStatic: (id) => !room.isSceneStatic(id), previous });
-      frame.cache.set('quantized', q);
-      lastQuantized.set(room, { bodies: frame.bodies, frame: q });
-    }
-    let shared = frame.cache.get('snapshotWork') as SharedFrameWork | undefined;
-    if (!shared) {
-      shared = new SharedFrameWork();
-      frame.cache.set('snapshotWork', shared);
-    }
-    const encoded = this.encoder.encode(q, (id) => room.sim.bodyDescriptor(id) ?? undefined, shared);
-    // Clients that share a baseline and the spawned bodies they still lack get the very same message: frame it once
-    // per tick, baseline and descriptor set (a descriptor is the same object for every client within a tick).
-    let key = `snapshotMessage:${encoded.baselineTick ?? -1}`;
-    for (const d of encoded.descriptors) key += `,${d.id}`;
-    let message = frame.cache.get(key) as Uint8Array | undefined;
-    if (!message) {
-      message = encodeServerMessage({ type: 'snapshot', bytes: encoded.bytes, descriptors: encoded.descriptors });
-      frame.cache.set(key, message);
-    }
+    // The room quantizes and frames once per tick what its members share.
+    const { message, encoded } = this.room.snapshots.snapshotFor(this.encoder, frame);
     const size = this.sendEncoded(message);
     this.stats.snapshotsSent++;
     this.stats.snapshotBytes += size;

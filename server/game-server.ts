@@ -1,7 +1,9 @@
 // The transport-agnostic server core: rooms, client sessions, metrics and logs on one clock. It accepts
 // ServerConnections from any transport (the ws gateway, or in-memory links in tests) and shuts everything down cleanly.
+import type { Clock } from '../shared/clock.ts';
 import { ByeReason, encodeServerMessage } from '../shared/protocol/index.ts';
-import { SystemClock, type Clock } from './clock.ts';
+import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
+import { SystemClock } from './clock.ts';
 import { ClientSession, DEFAULT_SESSION_LIMITS, type SessionLimits } from './client-session.ts';
 import { CloseCode, type ServerConnection } from './connection.ts';
 import { createLogger, type Logger } from './logger.ts';
@@ -52,7 +54,7 @@ export class GameServer {
     this.logger = opts.logger ?? createLogger();
     this.limits = { ...DEFAULT_SESSION_LIMITS, ...opts.limits };
     this.snapshotRateHz = opts.snapshotRateHz ?? 30;
-    if (!(this.snapshotRateHz >= 1 && this.snapshotRateHz <= 60)) throw new Error(`snapshot rate must be in [1, 60] Hz, got ${this.snapshotRateHz}`);
+    if (!(this.snapshotRateHz >= 1 && this.snapshotRateHz <= TICK_RATE_HZ)) throw new Error(`snapshot rate must be in [1, ${TICK_RATE_HZ}] Hz, got ${this.snapshotRateHz}`);
     this.maxConnections = opts.maxConnections ?? 256;
     this.startedMs = this.clock.nowMs();
     this.rooms = new RoomManager({

@@ -1,19 +1,19 @@
-// Adapts the client library's in-memory network peer (client/net/memory-transport.ts, described structurally here so
+// Adapts the client library's in-memory network peer (sdk/memory-transport.ts, described structurally here so
 // server/ never imports client code) to a ServerConnection: in-process tests and tools serve MemoryNetwork clients.
 import { clampCloseReason, type ConnectionHandlers, type ServerConnection } from './connection.ts';
 
-/** The server side of a MemoryNetwork link (the shape of client/net's MemoryPeer). */
+/** The server side of a MemoryNetwork link (the shape of sdk's MemoryPeer). */
 export interface MemoryPeerLike {
   readonly label: string;
   send(data: Uint8Array): void;
   close(code?: number, reason?: string): void;
-  onMessage(fn: (data: Uint8Array) => void): void;
+  onMessage(fn: (data: Uint8Array, binary: boolean) => void): void;
   onClose(fn: (code: number, reason: string) => void): void;
   isOpen(): boolean;
   bufferedAmount(): number;
 }
 
-/** Wraps a MemoryNetwork peer as a ServerConnection (every message is binary; closes are reported once). */
+/** Wraps a MemoryNetwork peer as a ServerConnection (closes are reported once). */
 export function memoryPeerConnection(peer: MemoryPeerLike): ServerConnection {
   return {
     remote: peer.label,
@@ -23,7 +23,7 @@ export function memoryPeerConnection(peer: MemoryPeerLike): ServerConnection {
     close: (code, reason) => peer.close(code, clampCloseReason(reason)),
     attach(handlers: ConnectionHandlers) {
       let closed = false;
-      peer.onMessage((data) => handlers.message(data, true));
+      peer.onMessage((data, binary) => handlers.message(data, binary));
       peer.onClose((code, reason) => {
         if (closed) return;
         closed = true;

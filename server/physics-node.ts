@@ -2,7 +2,7 @@
 // Import it (for its side effect or loadJoltNode) before creating a PhysicsWorld in Node.
 import { readFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
-import { loadJolt, setDefaultPhysicsInitOptions, type JoltModule } from '../shared/physics/jolt-backend.ts';
+import { loadJolt, setDefaultPhysicsInitOptions, type JoltModule } from '../shared/physics/index.ts';
 
 const require = createRequire(import.meta.url);
 

@@ -1,6 +1,6 @@
 // A token bucket on an injectable clock: a sustained rate plus a burst allowance, used per client for messages
 // and bytes. It only counts; the caller decides what exceeding it means (the session disconnects the client).
-import type { Clock } from './clock.ts';
+import type { Clock } from '../shared/clock.ts';
 
 /** Rate and burst of one bucket. */
 export interface RateLimit {

@@ -3,6 +3,7 @@
 import { mkdir } from 'node:fs/promises';
 import { join } from 'node:path';
 import type { TickInputRecord } from '../shared/sim/types.ts';
+import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import { installedJoltVersion, LogWriter } from './log/index.ts';
 import type { Logger } from './logger.ts';
 import type { RoomRecorder } from './room.ts';
@@ -20,12 +21,15 @@ export interface RoomRecorderOptions {
   /** The initial state hash (tick 0). */
   initialHash: string;
   logger: Logger;
-  /** A hash record every N ticks (0: none). Default 60. */
+  /** A hash record every N ticks (0: none). Default DEFAULT_LOG_HASH_EVERY_TICKS. */
   hashEveryTicks?: number;
   /** Stamp in file names and the header; default the current time. */
   createdAt?: Date;
   createdBy?: string;
 }
+
+/** How often a recording stores the state hash by default: once a second of play (replay checks each one). */
+export const DEFAULT_LOG_HASH_EVERY_TICKS = 60;
 
 /** A file name for a room's log: `<roomId>-<UTC timestamp>.taoslog`. */
 export function recordingFileName(roomId: string, createdAt: Date): string {
@@ -39,13 +43,13 @@ export async function createRoomRecorder(opts: RoomRecorderOptions): Promise<Roo
   await mkdir(opts.dir, { recursive: true });
   const createdAt = opts.createdAt ?? new Date();
   let path = join(opts.dir, recordingFileName(opts.roomId, createdAt));
-  const hashEvery = opts.hashEveryTicks ?? 60;
+  const hashEvery = opts.hashEveryTicks ?? DEFAULT_LOG_HASH_EVERY_TICKS;
   const header = {
     joltVersion: installedJoltVersion(),
     scenario: opts.scenario,
     params: { ...opts.params },
     seed: opts.seed,
-    tickRateHz: 60,
+    tickRateHz: TICK_RATE_HZ,
     hashEveryTicks: hashEvery,
     checkpointEveryTicks: 0,
     createdBy: opts.createdBy ?? `taos-physics serve (room ${opts.roomId})`,

@@ -1,7 +1,7 @@
 // The process's rooms: the default room, rooms created on demand from a scenario, lookup by id, the rooms limit,
 // and closing a room once it has been empty for a grace period (never the default room).
+import type { Clock, TimerHandle } from '../shared/clock.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
-import type { Clock, TimerHandle } from './clock.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
 import { Room, RoomError, type RoomInfo, type RoomRecorder, type RoomSimulation } from './room.ts';

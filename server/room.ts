@@ -1,13 +1,16 @@
 // One room: a Simulation stepped by its own TickClock, its players and their input buffers, the exact per-tick input
-// record (stepped, recorded), and delivery of each tick's events and world frames to its members. Protocol-agnostic.
+// record (stepped, recorded), and delivery of each tick's events and world frames to its members, with the snapshot
+// fan-out (snapshot-fan-out.ts) that does the members' shared encoding work once per tick.
+import type { Clock } from '../shared/clock.ts';
 import { BODY_STATE_STRIDE, BodyFlag, type Vec3Like } from '../shared/physics/index.ts';
 import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '../shared/sim/types.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
-import type { Clock } from './clock.ts';
+import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import { InputBuffer, OfferResult } from './input-buffer.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
+import { SnapshotFanOut } from './snapshot-fan-out.ts';
 import { TickClock } from './tick-clock.ts';
 
 /** The bulk body read the room hands to snapshot encoders (the world's readBodyStates() shape). */
@@ -46,8 +49,6 @@ export interface WorldFrame {
   tick: number;
   bodies: BodyStates;
   characters: readonly CharacterState[];
-  /** Scratch space for encoders: the first one stores work (e.g. quantized bodies) every other member reuses. */
-  readonly cache: Map<string, unknown>;
 }
 
 /** What a room needs from each connected member (the client session implements it). */
@@ -128,8 +129,6 @@ interface Player {
   inWorld: boolean;
 }
 
-const TICK_RATE_HZ = 60;
-
 /** A running room; build it with `new Room(sim, opts)` and call start(). */
 export class Room {
   readonly id: string;
@@ -140,6 +139,8 @@ export class Room {
   readonly seed: number | string;
   readonly sim: RoomSimulation;
   readonly tickClock: TickClock;
+  /** The members' shared snapshot and event work (format, quantized frame, framed messages). */
+  readonly snapshots: SnapshotFanOut;
   private readonly opts: RoomOptions;
   private readonly players = new Map<number, Player>();
   private pendingLeaves: number[] = [];
@@ -166,6 +167,7 @@ export class Room {
     this.bounds = opts.bounds ?? { min: { x: -500, y: -500, z: -500 }, max: { x: 500, y: 500, z: 500 } };
     this.params = opts.params;
     this.seed = opts.seed;
+    this.snapshots = new SnapshotFanOut({ bounds: this.bounds, isSceneStatic: (id) => this.isSceneStatic(id), describe: (id) => sim.bodyDescriptor(id) ?? undefined });
     const initial = sim.readBodyStates();
     this.lastBodyCount = initial.count;
     for (let i = 0; i < initial.count; i++) if ((initial.flags[i] & BodyFlag.Static) !== 0) this.sceneStatics.add(initial.ids[i]);
@@ -350,7 +352,6 @@ export class Room {
         flags: bodies.flags.slice(0, bodies.count),
       },
       characters: this.sim.characters(),
-      cache: new Map(),
     };
     for (const p of members) this.safely(p, () => p.member.deliverFrame(frame));
   }

@@ -1,6 +1,7 @@
 // The fixed-rate tick driver: tick k is due at start + k × dt on a monotonic Clock (absolute targets, so no drift),
 // runs late ticks back to back up to a catch-up limit, then gives up the lost time (slows down) and reports it.
-import type { Clock, TimerHandle } from './clock.ts';
+import type { Clock, TimerHandle } from '../shared/clock.ts';
+import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 
 /** What the driver reports when it had to give up time instead of catching up. */
 export interface SlowdownReport {
@@ -15,7 +16,7 @@ export interface SlowdownReport {
 /** Options of TickClock. */
 export interface TickClockOptions {
   clock: Clock;
-  /** Ticks per second; default 60. */
+  /** Ticks per second; default TICK_RATE_HZ (60). */
   tickRateHz?: number;
   /** Most ticks run back to back in one wake-up before giving up time; default 4. */
   maxCatchUpTicks?: number;
@@ -47,7 +48,7 @@ export class TickClock {
   private skippedTotal = 0;
 
   constructor(opts: TickClockOptions) {
-    const rate = opts.tickRateHz ?? 60;
+    const rate = opts.tickRateHz ?? TICK_RATE_HZ;
     if (!Number.isFinite(rate) || rate <= 0 || rate > 1000) throw new Error(`TickClock: tickRateHz must be in (0, 1000], got ${rate}`);
     const catchUp = opts.maxCatchUpTicks ?? 4;
     if (!Number.isInteger(catchUp) || catchUp < 1 || catchUp > 100) throw new Error(`TickClock: maxCatchUpTicks must be an integer in [1, 100], got ${catchUp}`);

@@ -14,10 +14,11 @@ import { startServerRig } from '../lib/server-rig.ts';
 import { SnapshotStreams, type PhaseCounters } from '../lib/snapshot-streams.ts';
 import { round } from '../lib/stats.ts';
 import { kbps } from '../lib/wire.ts';
+import { TICK_MS, TICK_RATE_HZ } from '../../shared/tick-rate.ts';
 
 const RATES_HZ = [60, 30, 20] as const;
 const RTT_MS = 100;
-const RTT_TICKS = Math.round(RTT_MS / (1000 / 60));
+const RTT_TICKS = Math.round(RTT_MS / TICK_MS);
 const GOAL_KBPS = 128;
 /** Issue 14's goals for the coding work: pushed non-stop and at rest, at 60 Hz. */
 const GOAL_PUSHED_KBPS = 32;
@@ -81,7 +82,7 @@ function newStreams(sim: Simulation, baselines: boolean): SnapshotStreams {
 
 /** Downstream kbps of a phase: snapshots and events (plus extra bytes, e.g. the welcome) over its duration. */
 function downKbps(c: PhaseCounters, extraBytes = 0): number {
-  return c.ticks > 0 ? kbps(c.snapshotBytes + c.eventBytes + extraBytes, c.ticks / 60) : NaN;
+  return c.ticks > 0 ? kbps(c.snapshotBytes + c.eventBytes + extraBytes, c.ticks / TICK_RATE_HZ) : NaN;
 }
 
 async function botRun(seconds: number, log: (m: string) => void): Promise<{ streams: SnapshotStreams; maxMoving: number }> {
@@ -125,7 +126,7 @@ async function pushedThenRest(pushSeconds: number, restSeconds: number, log: (m:
       settleTicks++;
     }
     const awakeAtRestStart = movingBodies(sim).awake;
-    log(`at rest after ${(settleTicks / 60).toFixed(1)} s (${awakeAtRestStart} bodies awake): ${restSeconds} s`);
+    log(`at rest after ${(settleTicks / TICK_RATE_HZ).toFixed(1)} s (${awakeAtRestStart} bodies awake): ${restSeconds} s`);
     for (let t = 0; t < restSeconds * 60; t++) {
       const record = idle(sim.tick);
       streams.afterStep(sim, record.tick, sim.step(record), 'atRest');

@@ -9,6 +9,7 @@ import { silentLogger } from '../../server/logger.ts';
 import { createMetrics } from '../../server/metrics.ts';
 import { startServer } from '../../server/start-server.ts';
 import type { InputCommand } from '../../shared/sim/input.ts';
+import { TICK_MS } from '../../shared/tick-rate.ts';
 import { runToEnd, startNode } from '../lib/child.ts';
 import type { FigureImpl, FigureOutput } from '../lib/figure.ts';
 import { latencyDistribution } from '../lib/rules.ts';
@@ -120,12 +121,12 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
             { label: 'arrival → applied (p99 of applied)', value: ms.p99, series: 'ours' },
             { label: 'sent → seen in snapshot (median)', value: rtt.median, series: 'other' },
             { label: 'sent → seen in snapshot (p99)', value: rtt.p99, series: 'other' },
-            { label: 'one tick', value: 1000 / 60, series: 'raw' },
+            { label: 'one tick', value: TICK_MS, series: 'raw' },
           ],
         },
       ],
       notes: [
-        `The server (startServer, ${DEFAULT_SCENARIO}, ${SNAPSHOT_RATE_HZ} Hz snapshots) runs in the figure's process; the client library (client/net, Node's WebSocket) runs in a child process on loopback.`,
+        `The server (startServer, ${DEFAULT_SCENARIO}, ${SNAPSHOT_RATE_HZ} Hz snapshots) runs in the figure's process; the client library (sdk/, Node's WebSocket) runs in a child process on loopback.`,
         'Arrival → applying tick: 1 means the input was applied by the first tick that ran after it arrived; every tick of input lead the client chose (to absorb jitter) adds one. Counted at the first arrival of each (player, tick) input (messages repeat recent inputs).',
         `Inputs never applied count in the distribution, ranked after the slowest applied one: ${late} arrived after their tick had run (the server repeated the previous command), ${notApplied - late} were dropped (too far ahead, no later copy stored). A quantile that lands on them has no value (n/a). The ms chart covers applied inputs only.`,
         `Sent → seen: the client toggles its Use button every ${intervalMs} ms; from the first input message carrying the new state leaving the socket to the first decoded snapshot whose own character shows it.`,

@@ -4,7 +4,7 @@
 import { mkdtemp, rm } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { replayLog } from '../../server/cli/replay-session.ts';
+import { replayLog } from '../../cli/replay-session.ts';
 import { LogReader } from '../../server/log/index.ts';
 import { PhysicsWorld } from '../../shared/physics/index.ts';
 import type { TickInputRecord } from '../../shared/sim/types.ts';

@@ -8,6 +8,7 @@ import { CUBES_SCENE, createSceneSim, PILE_READY_TICK, PILE_SCENE, stepEmptyTo, 
 import { startServerRig, type TickParts } from '../lib/server-rig.ts';
 import { linearFit, median, ratio, round, roundSummary, summarize, type Summary } from '../lib/stats.ts';
 import { kbps } from '../lib/wire.ts';
+import { TICK_RATE_HZ } from '../../shared/tick-rate.ts';
 
 const CLIENT_COUNTS = [1, 16, 64] as const;
 /** The goal for what the server adds over the floor at 16 clients (ms). */
@@ -120,7 +121,7 @@ async function measure(scene: Scene, startBytes: Uint8Array | null, clients: num
         events: partMedian('events'),
         other: round(median(other), 4),
       },
-      downstreamKbpsPerClient: round(kbps(after.bytesPerClient - before.bytesPerClient, (batches * (batchTicks + 1)) / 60), 1),
+      downstreamKbpsPerClient: round(kbps(after.bytesPerClient - before.bytesPerClient, (batches * (batchTicks + 1)) / TICK_RATE_HZ), 1),
     };
   } finally {
     await rig.close();

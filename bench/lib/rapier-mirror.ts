@@ -3,6 +3,7 @@
 import RAPIER from '@dimforge/rapier3d-deterministic-compat';
 import { BODY_STATE_STRIDE, BodyFlag, type ShapeSpec } from '../../shared/physics/index.ts';
 import type { Simulation } from '../../shared/sim/simulation.ts';
+import { TICK_DT_SECONDS } from '../../shared/tick-rate.ts';
 
 let initialized: Promise<void> | null = null;
 
@@ -43,7 +44,7 @@ function colliderFor(shape: ShapeSpec): RAPIER.ColliderDesc | null {
 export async function mirrorInRapier(sim: Simulation): Promise<RapierMirror> {
   await initRapier();
   const world = new RAPIER.World({ x: 0, y: -9.81, z: 0 }); // owned by the mirror; free() releases it
-  world.timestep = 1 / 60;
+  world.timestep = TICK_DT_SECONDS;
   const read = sim.readBodyStates();
   const skipped: string[] = [];
   let bodies = 0;

@@ -5,7 +5,7 @@
 import { applyCommand, type Player } from '../../shared/sim/players.ts';
 import type { SimCore } from '../../shared/sim/sim-core.ts';
 import type { Simulation } from '../../shared/sim/simulation.ts';
-import { TICK_DT_SECONDS } from '../../shared/sim/types.ts';
+import { TICK_DT_SECONDS } from '../../shared/tick-rate.ts';
 
 /** One floor tick: the whole of it and its character part (ms). */
 export interface FloorTick {
@@ -57,7 +57,8 @@ function floorBatch(sim: Simulation, ticks: number, characters: boolean): FloorT
       const t2 = performance.now();
       out.push({ ms: t2 - t0, characterMs: t1 - t0 });
     }
-    world.sensorHub.drain(); // sensor transitions of the floor's steps belong to no tick
+    // stepFixed() hands back the floor's sensor transitions (they belong to no tick: dropped here), and the restore
+    // puts the sensor overlaps back as they were.
     sim.restoreCheckpoint(cp); // also restores each player's command, fire cooldown and character state
   } finally {
     cp.dispose();

@@ -8,7 +8,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { getScenario } from '../../scenarios/index.ts';
 import type { ClientSession } from '../../server/client-session.ts';
-import type { Clock, TimerHandle } from '../../server/clock.ts';
+import type { Clock, TimerHandle } from '../../shared/clock.ts';
 import type { ConnectionHandlers, ServerConnection } from '../../server/connection.ts';
 import { GameServer } from '../../server/game-server.ts';
 import { installedJoltVersion, LogWriter } from '../../server/log/index.ts';
@@ -22,8 +22,8 @@ import { BotScript } from '../../shared/sim/bots.ts';
 import { Simulation } from '../../shared/sim/simulation.ts';
 import { InputSender } from './client-lib.ts';
 import { wsFrameBytes } from './wire.ts';
+import { TICK_MS, TICK_RATE_HZ } from '../../shared/tick-rate.ts';
 
-const TICK_MS = 1000 / 60;
 /** The client library's steady ping interval (its initial burst of quick pings happens during the join, unmeasured). */
 const PING_INTERVAL_MS = 1000;
 
@@ -183,7 +183,7 @@ async function createRigRecorder(dir: string, scenario: string, params: Readonly
     scenario,
     params: { ...params },
     seed: 1,
-    tickRateHz: 60,
+    tickRateHz: TICK_RATE_HZ,
     hashEveryTicks,
     checkpointEveryTicks: 0,
     createdBy: 'bench tick-overhead',

@@ -1,9 +1,10 @@
-// The clients-per-core figure's bot process: N players on the client library (client/net over Node's WebSocket), each
+// The clients-per-core figure's bot process: N players on the client library (sdk/ over Node's WebSocket), each
 // steered every tick by a scripted bot (walk, turn, sprint, jump; no firing, so the scene keeps its body count). Prints
 // {"ready"} once all are welcomed, {"window"} after SETTLE_MS, then {"report"} after WINDOW_MS; it plays on until stopped.
 // Run: node bench/procs/bot-swarm.ts WS_URL CLIENTS SETTLE_MS WINDOW_MS
 import { connect, type NetClient } from '../lib/client-lib.ts';
 import { BotScript } from '../../shared/sim/bots.ts';
+import { TICK_MS } from '../../shared/tick-rate.ts';
 
 const [url, nArg, settleArg, windowArg] = process.argv.slice(2);
 const n = Number(nArg);
@@ -34,7 +35,7 @@ const script = new BotScript({ seed: 7, bots: n, joinTicks: clients.map(() => 0)
 const steer = setInterval(() => {
   const record = script.next();
   for (let i = 0; i < record.commands.length; i++) clients[i].setInput(record.commands[i].input);
-}, 1000 / 60);
+}, TICK_MS);
 
 const totals = (): { snapshots: number; failed: number; bytesIn: number; bytesOut: number; closed: number } => {
   let snapshots = 0;

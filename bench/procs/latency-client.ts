@@ -1,4 +1,4 @@
-// The input-latency figure's client process: one player on the client library (client/net) over a real WebSocket.
+// The input-latency figure's client process: one player on the client library (sdk/) over a real WebSocket.
 // It toggles the Use button every interval, notes when the first input message carrying the new state leaves (a
 // wrapped transport) and when a snapshot first shows it on its own character; prints the samples as one JSON line.
 // Run: node bench/procs/latency-client.ts WS_URL TOGGLES INTERVAL_MS

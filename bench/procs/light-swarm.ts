@@ -9,6 +9,7 @@ import WebSocket from 'ws';
 import { decodeServerMessage, DEFAULT_INPUT_REDUNDANCY, encodeClientMessage, PROTOCOL_VERSION, readSnapshotHeader, type ClientMessage } from '../../shared/protocol/index.ts';
 import { BotScript } from '../../shared/sim/bots.ts';
 import { ClockSync, InputLead, InputSender } from '../lib/client-lib.ts';
+import { TICK_MS } from '../../shared/tick-rate.ts';
 
 const [url, nArg, settleArg, windowArg, roomsArg] = process.argv.slice(2);
 const n = Number(nArg);
@@ -20,7 +21,7 @@ if (!url || !Number.isInteger(n) || n < 1 || !(settleMs >= 0) || !(windowMs > 0)
   process.exit(2);
 }
 const say = (obj: unknown): void => void process.stdout.write(`${JSON.stringify(obj)}\n`);
-/** The client library's defaults (client/net/client.ts and link-session.ts). */
+/** The client library's defaults (sdk//client.ts and link-session.ts). */
 const INITIAL_PINGS = 5;
 const INITIAL_PING_SPACING_MS = 100;
 const PING_INTERVAL_MS = 1000;
@@ -128,8 +129,8 @@ const script = new BotScript({ seed: 7, bots: n, joinTicks: bots.map(() => 0), f
 const steer = setInterval(() => {
   const record = script.next();
   for (let i = 0; i < record.commands.length; i++) bots[i].sender.setCommand(record.commands[i].input);
-}, 1000 / 60);
-const pumper = setInterval(() => pump(bots), (1000 / 60) * PUMP_SPACING_TICKS);
+}, TICK_MS);
+const pumper = setInterval(() => pump(bots), TICK_MS * PUMP_SPACING_TICKS);
 
 await new Promise((r) => setTimeout(r, settleMs));
 const start = { atMs: performance.now(), cpu: process.cpuUsage(), sent: { ...sent }, received: { ...received } };

@@ -1,6 +1,6 @@
 // The renderer gallery (gallery.html): every shape kind the renderer draws, moving on scripted paths, with no server.
 // A visual check of the renderer and the scene browser tests use; `?count=N` adds N more bodies for load tests.
-import type { ShapeSpec } from '../../shared/physics/shapes.ts';
+import type { ShapeSpec } from '../../shared/physics-data/shape-spec.ts';
 import { OrbitCamera } from '../render/camera.ts';
 import { WebGpuUnavailableError } from '../render/gpu-context.ts';
 import { Renderer } from '../render/renderer.ts';

@@ -1,5 +1,6 @@
 // What the HUD and net graph show about the connection: snapshot rate, bytes in, arrival jitter and interpolation
 // buffer depth over the last seconds. Pure bookkeeping over timestamps the caller passes in (ms), unit-testable.
+import { TICK_RATE_HZ } from '../../shared/tick-rate.ts';
 
 /** One sample of a series: time (ms) and value. */
 export interface SeriesPoint {
@@ -31,7 +32,7 @@ export class NetHistory {
   private lastArrivalMs: number | null = null;
   private lastTick: number | null = null;
 
-  constructor(tickRateHz = 60, windowMs = 5000) {
+  constructor(tickRateHz = TICK_RATE_HZ, windowMs = 5000) {
     if (!(tickRateHz > 0) || !(windowMs > 0)) throw new Error(`NetHistory: tick rate and window must be > 0, got ${tickRateHz}, ${windowMs}`);
     this.tickMs = 1000 / tickRateHz;
     this.windowMs = windowMs;

@@ -1,6 +1,6 @@
-// The page's network session: a thin adapter over the client library (client/net's NetClient) that maps its
+// The page's network session: a thin adapter over the client library (sdk's NetClient) that maps its
 // events and interpolated frames onto what the page uses (session-types.ts). No wire work happens here.
-import { connect, type NetClient } from '../net/index.ts';
+import { connect, type NetClient } from '../../sdk/index.ts';
 import type { InputCommand } from '../../shared/sim/input.ts';
 import type { NetSession, SessionFrame, SessionHandlers } from './session-types.ts';
 

@@ -6,7 +6,7 @@ import { mat4LookAt, mat4Multiply, mat4Perspective, type Vec3 } from './mat4.ts'
 import type { MeshData } from './mesh-data.ts';
 import { FRAME_UNIFORM_FLOATS, INSTANCE_STRIDE_BYTES, SCENE_SHADER_WGSL, VERTEX_STRIDE_BYTES } from './shaders.ts';
 import { shapeMeshRef } from './shape-mesh.ts';
-import type { ShapeSpec } from '../../shared/physics/shapes.ts';
+import type { ShapeSpec } from '../../shared/physics-data/shape-spec.ts';
 
 /** Where the camera is and what it sees. */
 export interface CameraView {

@@ -1,6 +1,6 @@
 // ShapeSpec → renderable mesh: which cached mesh a shape uses (its key), the per-instance scale, and how to build it.
 // Boxes, spheres and cylinders share one unit mesh scaled per instance; other kinds get a mesh per distinct shape.
-import { validateShapeSpec, type CompoundPart, type ShapeSpec } from '../../shared/physics/shapes.ts';
+import { validateShapeSpec, type CompoundPart, type ShapeSpec } from '../../shared/physics-data/shape-spec.ts';
 import type { Vec3 } from './mat4.ts';
 import { MeshBuilder, type MeshData } from './mesh-data.ts';
 import { unitBoxMesh, unitCapsuleMesh, unitCylinderMesh, unitSphereMesh } from './primitive-meshes.ts';

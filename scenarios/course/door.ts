@@ -3,6 +3,7 @@
 import { CollisionLayer } from '../../shared/physics/index.ts';
 import type { ScenarioContext } from '../../shared/sim/scenario.ts';
 import type { SimEvent } from '../../shared/sim/types.ts';
+import { TICK_DT_SECONDS } from '../../shared/tick-rate.ts';
 import { Palette } from '../lib/palette.ts';
 import { DOORWAY, WALL } from './layout.ts';
 
@@ -11,7 +12,6 @@ const DOOR_HALF = { x: 0.15, y: DOORWAY.height / 2, z: (DOORWAY.maxZ - DOORWAY.m
 export const DOOR_TRAVEL_METRES = DOORWAY.maxZ - DOORWAY.minZ + 0.1;
 /** Door speed (m/s). */
 const DOOR_SPEED_METRES_PER_SECOND = 3;
-const DT_SECONDS = 1 / 60;
 
 /** The door's closed centre. */
 export const DOOR_CLOSED = { x: WALL.x, y: DOORWAY.height / 2, z: (DOORWAY.minZ + DOORWAY.maxZ) / 2 } as const;
@@ -91,11 +91,11 @@ export class SlidingDoor {
       ctx.emit('door', 0);
     }
     const goal = this.open === 1 ? DOOR_TRAVEL_METRES : 0;
-    const stepMetres = DOOR_SPEED_METRES_PER_SECOND * DT_SECONDS;
+    const stepMetres = DOOR_SPEED_METRES_PER_SECOND * TICK_DT_SECONDS;
     const next = this.offsetMetres < goal ? Math.min(goal, this.offsetMetres + stepMetres) : Math.max(goal, this.offsetMetres - stepMetres);
     if (next !== this.offsetMetres || ctx.world.getBody(this.doorId)!.isActive()) {
       // moveKinematic sets the velocity that reaches the goal in one step, so the door pushes what is in its way.
-      ctx.world.moveKinematic(this.doorId, { x: DOOR_CLOSED.x, y: DOOR_CLOSED.y, z: DOOR_CLOSED.z - next }, null, DT_SECONDS);
+      ctx.world.moveKinematic(this.doorId, { x: DOOR_CLOSED.x, y: DOOR_CLOSED.y, z: DOOR_CLOSED.z - next }, null, TICK_DT_SECONDS);
     }
     this.offsetMetres = next;
   }

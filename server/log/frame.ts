@@ -1,6 +1,6 @@
 // Record framing of the input log: type byte, payload length (LEB128, ≤ 4 bytes), a header check byte, the payload,
 // and a CRC-32. Encodes frames and classifies the bytes at an offset as a whole frame, "need more", or corrupt.
-import { ByteWriter } from './byte-io.ts';
+import { ByteWriter } from '../../shared/byte-io.ts';
 import { crc32 } from './crc32.ts';
 import { MAX_FRAME_OVERHEAD_BYTES, MAX_LENGTH_VARINT_BYTES, MAX_PAYLOAD_BYTES, RECORD_TYPE_NAMES, type RecordTypeCode } from './log-format.ts';
 
@@ -22,8 +22,8 @@ export function writeFrame(out: ByteWriter, type: RecordTypeCode, payload: Uint8
   out.u8(type);
   out.uvarint(length);
   out.u8(crc32(out.view(), start, out.length) & 0xff);
-  out.bytes(payload);
-  if (tail) out.bytes(tail);
+  out.raw(payload);
+  if (tail) out.raw(tail);
   out.u32(crc32(out.view(), start, out.length));
 }
 

@@ -1,7 +1,7 @@
 // Turns a session into input-log bytes, record by record, enforcing the same ordering rules the reader checks
 // (consecutive ticks, hashes/checkpoints at the current tick, nothing after the end). Pure: no files.
 import type { TickInputRecord } from '../../shared/sim/types.ts';
-import { ByteWriter } from './byte-io.ts';
+import { ByteWriter } from '../../shared/byte-io.ts';
 import { writeFrame } from './frame.ts';
 import { LOG_FORMAT_VERSION, LOG_MAGIC, PRELUDE_BYTES, RecordType, type LogHeader } from './log-format.ts';
 import { encodeHeader, writeCheckpointHead, writeEndPayload, writeHashPayload, writeTickPayload } from './record-codec.ts';
@@ -27,7 +27,7 @@ export class LogEncoder {
     if (init === null || typeof init !== 'object') throw new Error('log header must be an object');
     this.header = { formatVersion: LOG_FORMAT_VERSION, ...init, params: { ...init.params } };
     const out = new ByteWriter(256);
-    out.bytes(LOG_MAGIC);
+    out.raw(LOG_MAGIC);
     out.u16(LOG_FORMAT_VERSION);
     out.u16(0);
     writeFrame(out, RecordType.Header, encodeHeader(this.header));

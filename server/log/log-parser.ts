@@ -1,7 +1,7 @@
 // The input log's reading rules, independent of where bytes come from: prelude checks, then record after record
 // (framing, payload decoding, ordering: header first, consecutive ticks, hashes/checkpoints at the current tick,
 // nothing after the end record). Used by the streaming file reader and the in-memory reader.
-import { PayloadError } from './byte-io.ts';
+import { PayloadError } from '../../shared/byte-io.ts';
 import { scanFrame } from './frame.ts';
 import { LOG_FORMAT_VERSION, LOG_MAGIC, LogCorruptError, LogFormatError, PRELUDE_BYTES, RECORD_TYPE_NAMES, RecordType, type LogEntry, type LogHeader, type RecordTypeCode } from './log-format.ts';
 import { decodeCheckpoint, decodeEnd, decodeHash, decodeHeader, decodeTick } from './record-codec.ts';

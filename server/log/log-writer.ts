@@ -4,13 +4,13 @@
 import { open, type FileHandle } from 'node:fs/promises';
 import { dirname } from 'node:path';
 import type { TickInputRecord } from '../../shared/sim/types.ts';
-import { ByteWriter } from './byte-io.ts';
+import { ByteWriter } from '../../shared/byte-io.ts';
 import { LogEncoder, type LogHeaderInit } from './log-encoder.ts';
 import type { LogHeader } from './log-format.ts';
 
 /** Writer options (see docs/input-log.md, "Durability"). */
 export interface LogWriterOptions {
-  /** Hand buffered records to the OS after this many tick records (default 60: one second of play). */
+  /** Hand buffered records to the OS after this many tick records (default DEFAULT_FLUSH_EVERY_TICKS). */
   flushEveryTicks?: number;
   /** Also flush once this many bytes are buffered (default 1 MiB). */
   flushAtBytes?: number;
@@ -22,6 +22,8 @@ export interface LogWriterOptions {
 
 /** Initial size of the pending buffer; it grows as needed and is replaced after holding something huge. */
 const PENDING_BYTES = 64 * 1024;
+/** How many tick records a writer buffers before handing them to the OS by default: one second of play. */
+export const DEFAULT_FLUSH_EVERY_TICKS = 60;
 
 /** Writes one session's input log. Create with LogWriter.create(); always close() (or abandon()) it. */
 export class LogWriter {
@@ -45,7 +47,7 @@ export class LogWriter {
     this.path = path;
     this.fh = fh;
     this.encoder = encoder;
-    this.flushEveryTicks = opts.flushEveryTicks ?? 60;
+    this.flushEveryTicks = opts.flushEveryTicks ?? DEFAULT_FLUSH_EVERY_TICKS;
     this.flushAtBytes = opts.flushAtBytes ?? 1024 * 1024;
     this.syncOnCheckpoint = opts.syncOnCheckpoint ?? true;
   }
@@ -69,7 +71,7 @@ export class LogWriter {
       throw new Error(`cannot create input log ${path}: ${e.message}`);
     }
     const writer = new LogWriter(path, fh, encoder, opts);
-    writer.pending.bytes(encoder.start());
+    writer.pending.raw(encoder.start());
     writer.bytesAppended = writer.pending.length;
     try {
       await writer.flushNow(true);

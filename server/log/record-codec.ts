@@ -2,7 +2,7 @@
 // checkpoint, end. Encoders validate and throw a clear Error; decoders throw PayloadError. Pure, no I/O.
 import { validateInputCommand, type InputCommand } from '../../shared/sim/input.ts';
 import type { PlayerCommand, PlayerJoin, TickInputRecord } from '../../shared/sim/types.ts';
-import { ByteReader, ByteWriter, PayloadError } from './byte-io.ts';
+import { ByteReader, ByteWriter, PayloadError } from '../../shared/byte-io.ts';
 import { LOG_FORMAT_VERSION, MAX_HEADER_STRING_BYTES, MAX_NAME_BYTES, MAX_PLAYER_ID, type LogHeader } from './log-format.ts';
 
 const SEED_NUMBER = 0;
@@ -33,15 +33,15 @@ export function encodeHeader(h: LogHeader): Uint8Array {
   if (h.formatVersion !== LOG_FORMAT_VERSION) throw new Error(`log header: this build writes format version ${LOG_FORMAT_VERSION}, not ${h.formatVersion}`);
   if (h === null || typeof h !== 'object' || h.params === null || typeof h.params !== 'object') throw new Error('log header: params must be an object');
   const w = new ByteWriter();
-  w.string(checkHeaderString(h.joltVersion, 'joltVersion'));
+  w.varintPrefixedString(checkHeaderString(h.joltVersion, 'joltVersion'));
   if (checkHeaderString(h.scenario, 'scenario') === '') throw new Error('log header: scenario name is empty');
-  w.string(h.scenario);
+  w.varintPrefixedString(h.scenario);
   const names = Object.keys(h.params).sort();
   w.uvarint(names.length);
   for (const name of names) {
     const value = h.params[name];
     if (typeof value !== 'number' || !Number.isFinite(value)) throw new Error(`log header: parameter ${name} must be a finite number, got ${String(value)}`);
-    w.string(checkHeaderString(name, `parameter name "${name}"`));
+    w.varintPrefixedString(checkHeaderString(name, `parameter name "${name}"`));
     w.f64(value);
   }
   if (typeof h.seed === 'number') {
@@ -50,27 +50,27 @@ export function encodeHeader(h: LogHeader): Uint8Array {
     w.f64(h.seed);
   } else {
     w.u8(SEED_STRING);
-    w.string(checkHeaderString(h.seed, 'seed'));
+    w.varintPrefixedString(checkHeaderString(h.seed, 'seed'));
   }
   w.uvarint(checkCount(h.tickRateHz, 'tickRateHz', 10_000));
   if (h.tickRateHz === 0) throw new Error('log header: tickRateHz must be positive');
   w.uvarint(checkCount(h.hashEveryTicks, 'hashEveryTicks', 0xffffffff));
   w.uvarint(checkCount(h.checkpointEveryTicks, 'checkpointEveryTicks', 0xffffffff));
-  w.string(checkHeaderString(h.createdBy, 'createdBy'));
+  w.varintPrefixedString(checkHeaderString(h.createdBy, 'createdBy'));
   return w.finish();
 }
 
 /** Decodes a header payload (the format version comes from the prelude). */
 export function decodeHeader(payload: Uint8Array, formatVersion: number): LogHeader {
   const r = new ByteReader(payload);
-  const joltVersion = r.string(MAX_HEADER_STRING_BYTES, 'joltVersion');
-  const scenario = r.string(MAX_HEADER_STRING_BYTES, 'scenario');
+  const joltVersion = r.varintPrefixedString(MAX_HEADER_STRING_BYTES, 'joltVersion');
+  const scenario = r.varintPrefixedString(MAX_HEADER_STRING_BYTES, 'scenario');
   if (scenario === '') throw new PayloadError('scenario name is empty');
   const count = r.uvarint('parameter count');
   const params: Record<string, number> = {};
   let prev = '';
   for (let i = 0; i < count; i++) {
-    const name = r.string(MAX_HEADER_STRING_BYTES, 'parameter name');
+    const name = r.varintPrefixedString(MAX_HEADER_STRING_BYTES, 'parameter name');
     if (i > 0 && !(name > prev)) throw new PayloadError(`parameter names not sorted/unique at "${name}"`);
     const value = r.f64(`parameter ${name}`);
     if (!Number.isFinite(value)) throw new PayloadError(`parameter ${name} is not finite`);
@@ -83,7 +83,7 @@ export function decodeHeader(payload: Uint8Array, formatVersion: number): LogHea
     seed = r.f64('seed');
     if (!Number.isFinite(seed)) throw new PayloadError('seed is not finite');
   } else if (kind === SEED_STRING) {
-    seed = r.string(MAX_HEADER_STRING_BYTES, 'seed');
+    seed = r.varintPrefixedString(MAX_HEADER_STRING_BYTES, 'seed');
   } else {
     throw new PayloadError(`unknown seed kind ${kind}`);
   }
@@ -91,7 +91,7 @@ export function decodeHeader(payload: Uint8Array, formatVersion: number): LogHea
   if (tickRateHz === 0) throw new PayloadError('tick rate is 0');
   const hashEveryTicks = r.uvarint('hash interval');
   const checkpointEveryTicks = r.uvarint('checkpoint interval');
-  const createdBy = r.string(MAX_HEADER_STRING_BYTES, 'createdBy');
+  const createdBy = r.varintPrefixedString(MAX_HEADER_STRING_BYTES, 'createdBy');
   r.expectEnd('header');
   return { formatVersion, joltVersion, scenario, params, seed, tickRateHz, hashEveryTicks, checkpointEveryTicks, createdBy };
 }
@@ -167,7 +167,7 @@ export function writeTickPayload(w: ByteWriter, rec: TickInputRecord): void {
   w.uvarint(rec.joins.length);
   for (const j of rec.joins) {
     w.uvarint(j.playerId);
-    w.string(j.name);
+    w.varintPrefixedString(j.name);
   }
   w.uvarint(rec.commands.length);
   for (const c of rec.commands) {
@@ -197,7 +197,7 @@ export function decodeTick(payload: Uint8Array, start = 0, end = payload.length)
   const nJoins = r.uvarint('join count');
   for (let i = 0, prev = -1; i < nJoins; i++) {
     const playerId = (prev = readPlayerId(r, prev, 'joining player id'));
-    joins.push({ playerId, name: r.string(MAX_NAME_BYTES, 'player name') });
+    joins.push({ playerId, name: r.varintPrefixedString(MAX_NAME_BYTES, 'player name') });
   }
   const commands: PlayerCommand[] = [];
   const nCommands = r.uvarint('command count');
@@ -239,7 +239,7 @@ function writeHash(w: ByteWriter, hash: string): void {
 const HEX_PAIRS = Array.from({ length: 256 }, (_, i) => i.toString(16).padStart(2, '0'));
 
 function readHash(r: ByteReader): string {
-  const b = r.bytes(8, 'hash');
+  const b = r.raw(8, 'hash');
   return HEX_PAIRS[b[0]] + HEX_PAIRS[b[1]] + HEX_PAIRS[b[2]] + HEX_PAIRS[b[3]] + HEX_PAIRS[b[4]] + HEX_PAIRS[b[5]] + HEX_PAIRS[b[6]] + HEX_PAIRS[b[7]];
 }
 
@@ -282,7 +282,7 @@ export function writeCheckpointHead(w: ByteWriter, tick: number, bytes: Uint8Arr
 export function encodeCheckpoint(tick: number, bytes: Uint8Array): Uint8Array {
   const w = new ByteWriter(bytes.length + 8);
   writeCheckpointHead(w, tick, bytes);
-  w.bytes(bytes);
+  w.raw(bytes);
   return w.finish();
 }
 
@@ -290,7 +290,7 @@ export function encodeCheckpoint(tick: number, bytes: Uint8Array): Uint8Array {
 export function decodeCheckpoint(payload: Uint8Array, start = 0, end = payload.length): { tick: number; bytes: Uint8Array } {
   const r = new ByteReader(payload, start, end);
   const tick = r.uvarint('tick');
-  return { tick, bytes: Uint8Array.prototype.slice.call(payload, r.pos, end) }; // a copy even when given a Buffer
+  return { tick, bytes: Uint8Array.prototype.slice.call(payload, r.offset, end) }; // a copy even when given a Buffer
 }
 
 /** Appends the end record payload (final tick counter, final state hash) to `w`; validates first. */

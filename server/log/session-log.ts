@@ -3,7 +3,8 @@
 // and by any host (the server) that wants its sessions replayable.
 import type { Simulation } from '../../shared/sim/simulation.ts';
 import { validateTickRecord } from '../../shared/sim/tick-record.ts';
-import { TICK_RATE_HZ, type SimEvent, type TickInputRecord } from '../../shared/sim/types.ts';
+import type { SimEvent, TickInputRecord } from '../../shared/sim/types.ts';
+import { TICK_RATE_HZ } from '../../shared/tick-rate.ts';
 import { installedJoltVersion } from './jolt-version.ts';
 import { LogWriter, type LogWriterOptions } from './log-writer.ts';
 

@@ -1,8 +1,9 @@
 // BodyHandle: the caller's view of one body — a stable id, the raw Jolt Body, and plain-copy getters.
 // The world owns the Jolt body; a handle is only valid until the body is removed (then `removed` is true).
+import type { ShapeSpec } from '../physics-data/shape-spec.ts';
+import type { QuatLike, Vec3Like } from '../physics-data/vectors.ts';
 import type { JoltModule } from './jolt-backend.ts';
-import type { ShapeSpec } from './shapes.ts';
-import type { MotionKind, QuatLike, SensorCallbacks, Vec3Like } from './types.ts';
+import type { MotionKind, SensorCallbacks } from './types.ts';
 
 export type JoltBody = InstanceType<JoltModule['Body']>;
 
@@ -120,16 +121,3 @@ export class BodyHandle<Other = unknown> {
     out[offset + 12] = heap[p + 2];
   }
 }
-
-/** Floats per body in a bulk state read: position 3, rotation 4, linear velocity 3, angular velocity 3. */
-export const BODY_STATE_STRIDE = 13;
-
-/** Bit flags per body in a bulk state read. */
-export const BodyFlag = {
-  Static: 1,
-  Kinematic: 2,
-  Dynamic: 4,
-  Active: 8,
-  Sensor: 16,
-  Character: 32,
-} as const;

@@ -1,9 +1,9 @@
 // Motion control of live bodies: velocities, impulses, kinematic moves and teleports through Jolt's BodyInterface.
 // Validates every input first and frees each Jolt temporary at once; PhysicsWorld's methods delegate here.
+import { checkQuat, checkVec3 } from '../physics-data/shape-spec.ts';
+import type { QuatLike, Vec3Like } from '../physics-data/vectors.ts';
 import type { BodyHandle } from './body-handle.ts';
 import type { JoltModule } from './jolt-backend.ts';
-import { checkQuat, checkVec3 } from './shapes.ts';
-import type { QuatLike, Vec3Like } from './types.ts';
 
 type J = JoltModule;
 

@@ -1,9 +1,11 @@
 // BodyOptions handling: resolving motion, validating every tunable, and copying them into Jolt BodyCreationSettings.
+import { checkVec3 } from '../physics-data/shape-spec.ts';
+import type { QuatLike, Vec3Like } from '../physics-data/vectors.ts';
 import type { JoltModule } from './jolt-backend.ts';
 import { checkNoCollideGroup } from './body-slots.ts';
 import { assertGroupBits, CollisionLayer, packObjectLayer } from './layers.ts';
-import { checkVec3, type JoltShape } from './shapes.ts';
-import type { BodyOptions, MotionKind, QuatLike, Vec3Like } from './types.ts';
+import type { JoltShape } from './shapes.ts';
+import type { BodyOptions, MotionKind } from './types.ts';
 
 type J = JoltModule;
 

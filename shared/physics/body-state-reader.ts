@@ -1,19 +1,25 @@
 // The bulk body read behind PhysicsWorld.readBodyStates(): the world's bodies in stable-id order, read through
 // Jolt's raw exported bindings (no wrapper objects) into reused typed arrays. Same getters, same bits, ~2× faster.
-import { BodyFlag, BODY_STATE_STRIDE, type BodyHandle } from './body-handle.ts';
+import { BodyFlag, BODY_STATE_STRIDE } from '../physics-data/body-state.ts';
+import type { Vec3Like } from '../physics-data/vectors.ts';
+import type { BodyHandle } from './body-handle.ts';
 import type { JoltModule } from './jolt-backend.ts';
-import type { Vec3Like } from './types.ts';
 
 type RawGetter = (bodyPtr: number) => number;
 
+/** One raw export of the module (its typings do not list them), if it is a function. */
+function rawGetter(J: JoltModule, name: string): RawGetter | undefined {
+  const f: unknown = Reflect.get(J, name);
+  return typeof f === 'function' ? (f as RawGetter) : undefined;
+}
+
 /** The raw Body getters the glue code calls; undefined if this Jolt build does not export them. */
 function rawGetters(J: JoltModule): { pos: RawGetter; rot: RawGetter; lin: RawGetter; ang: RawGetter; active: RawGetter } | undefined {
-  const m = J as unknown as Record<string, RawGetter | undefined>;
-  const pos = m._emscripten_bind_Body_GetPosition_0;
-  const rot = m._emscripten_bind_Body_GetRotation_0;
-  const lin = m._emscripten_bind_Body_GetLinearVelocity_0;
-  const ang = m._emscripten_bind_Body_GetAngularVelocity_0;
-  const active = m._emscripten_bind_Body_IsActive_0;
+  const pos = rawGetter(J, '_emscripten_bind_Body_GetPosition_0');
+  const rot = rawGetter(J, '_emscripten_bind_Body_GetRotation_0');
+  const lin = rawGetter(J, '_emscripten_bind_Body_GetLinearVelocity_0');
+  const ang = rawGetter(J, '_emscripten_bind_Body_GetAngularVelocity_0');
+  const active = rawGetter(J, '_emscripten_bind_Body_IsActive_0');
   if (!pos || !rot || !lin || !ang || !active) return undefined;
   return { pos, rot, lin, ang, active };
 }

@@ -1,14 +1,14 @@
 // CharacterController (seed §25.13): Jolt CharacterVirtual move-and-slide with stairs, floor stick, jumping and
 // ground state, plus a kinematic inner body on the character's layer so rays and sensors see it.
 // `position` is the character's feet; the capsule stands on it (height 2·(halfHeight + radius)).
+import { checkVec3 } from '../physics-data/shape-spec.ts';
+import type { Vec3Like } from '../physics-data/vectors.ts';
 import type { BodyHandle } from './body-handle.ts';
 import type { JoltModule } from './jolt-backend.ts';
 import { checkNoCollideGroup } from './body-slots.ts';
 import { assertGroupBits, CollisionLayer, makeBroadPhaseFilter, makeObjectLayerFilter, packObjectLayer } from './layers.ts';
-import type { PhysicsWorld } from './physics-world.ts';
-import { checkVec3 } from './shapes.ts';
+import { worldInternals, type PhysicsWorld } from './physics-world.ts';
 import { restoreStateBytes, saveStateBytes, type JoltStateRecorder } from './state-recorder.ts';
-import type { Vec3Like } from './types.ts';
 
 type J = JoltModule;
 
@@ -39,11 +39,25 @@ export interface CharacterOptions {
   name?: string;
   /** The inner body's no-collide group: bodies sharing it (e.g. this player's bullets) never touch the capsule. */
   noCollideGroup?: number;
-  /** @internal Checkpoint restore: recreate the inner body under this stable id and Jolt BodyID. */
-  restoreIds?: { id: number; joltId: number };
 }
 
 const GROUND_STATES: Record<number, GroundState> = {};
+
+/** The ids the constructor call in progress recreates its inner body under: set only by recreateCharacter. */
+let restoringIds: { id: number; joltId: number } | undefined;
+
+/**
+ * Recreates a saved character with its inner body under the saved stable id and Jolt BodyID (checkpoint restore).
+ * Not public API: shared/sim reaches it through shared/physics/internal.ts.
+ */
+export function recreateCharacter(world: PhysicsWorld, opts: CharacterOptions, ids: { id: number; joltId: number }): CharacterController {
+  restoringIds = ids;
+  try {
+    return new CharacterController(world, opts);
+  } finally {
+    restoringIds = undefined;
+  }
+}
 
 /** A move-and-slide character. Set `velocity.x/z` each tick, call move(dtSeconds), read the results. */
 export class CharacterController {
@@ -70,6 +84,9 @@ export class CharacterController {
   private readonly disposer: () => void;
 
   constructor(world: PhysicsWorld, opts: CharacterOptions) {
+    const restoreIds = restoringIds;
+    restoringIds = undefined;
+    const internals = worldInternals(world);
     const what = `CharacterController${opts.name ? ` "${opts.name}"` : ''}`;
     const J = world.jolt;
     this.world = world;
@@ -86,7 +103,7 @@ export class CharacterController {
     const stick = finiteIn(opts.stickToFloorDistance ?? 0.5, 0, 10, what, 'stickToFloorDistance');
     const mass = positive(opts.massKg ?? 70, what, 'massKg');
     if (opts.noCollideGroup !== undefined) checkNoCollideGroup(opts.noCollideGroup, what);
-    if (opts.restoreIds && world.getBody(opts.restoreIds.id)) throw new Error(`${what}: stable id ${opts.restoreIds.id} is already in use`);
+    if (restoreIds && world.getBody(restoreIds.id)) throw new Error(`${what}: stable id ${restoreIds.id} is already in use`);
     world.ensureRoom(16 * 1024, what);
 
     const centreY = this.halfHeight + this.radius;
@@ -116,7 +133,7 @@ export class CharacterController {
     J.destroy(plane);
     const pos = new J.RVec3(opts.position.x, opts.position.y, opts.position.z); // copied, freed below
     // Jolt picks the inner body's BodyID itself: steer it to the deterministic one (see body-slots.ts).
-    const innerJoltId = opts.innerBody !== false ? world.slots.prepareJoltChosen(opts.restoreIds?.joltId) : 0;
+    const innerJoltId = opts.innerBody !== false ? internals.slots.prepareJoltChosen(restoreIds?.joltId) : 0;
     this.character = new J.CharacterVirtual(settings, pos, identity, world.system); // owned here; destroyed in destroy()
     this.character.AddRef(); // keep Jolt's ref-counting from ever freeing it behind our back
     J.destroy(pos);
@@ -137,10 +154,10 @@ export class CharacterController {
 
     if (opts.innerBody !== false) {
       const innerId = this.character.GetInnerBodyID();
-      world.slots.confirmJoltChosen(innerJoltId, innerId.GetIndexAndSequenceNumber());
+      internals.slots.confirmJoltChosen(innerJoltId, innerId.GetIndexAndSequenceNumber());
       const inner = world.system.GetBodyLockInterfaceNoLock().TryGetBody(innerId);
-      if (opts.noCollideGroup !== undefined) world.slots.setNoCollideGroup(inner, opts.noCollideGroup);
-      this.body = world.track(inner, {
+      if (opts.noCollideGroup !== undefined) internals.slots.setNoCollideGroup(inner, opts.noCollideGroup);
+      this.body = internals.track(inner, {
         motion: 'kinematic',
         layer: this.layer,
         mask: this.mask,
@@ -148,10 +165,10 @@ export class CharacterController {
         role: 'character',
         shape: { kind: 'capsule', halfHeight: this.halfHeight, radius: this.radius },
         opts: { userData: opts.userData, name: opts.name },
-      }, opts.restoreIds?.id);
+      }, restoreIds?.id);
     }
     this.disposer = () => this.destroy();
-    world.disposers.add(this.disposer);
+    internals.disposers.add(this.disposer);
     if (GROUND_STATES[J.EGroundState_OnGround] === undefined) {
       GROUND_STATES[J.EGroundState_OnGround] = 'ground';
       GROUND_STATES[J.EGroundState_OnSteepGround] = 'steep';
@@ -302,9 +319,10 @@ export class CharacterController {
   destroy(): void {
     if (this.destroyed) return;
     this.destroyed = true;
-    this.world.disposers.delete(this.disposer);
+    const internals = worldInternals(this.world);
+    internals.disposers.delete(this.disposer);
     const J = this.J;
-    if (this.body) this.world.untrack(this.body);
+    if (this.body) internals.untrack(this.body);
     this.character.Release(); // our reference; the character (and its inner body) is freed when it reaches zero
     for (const obj of [this.update, this.bpFilter, this.objFilter, this.bodyFilter, this.shapeFilter, this.scratch, this.gravity]) J.destroy(obj);
   }

@@ -1,10 +1,10 @@
 // Constraints in world space: point (ball-and-socket), hinge, distance and slider helpers that build Jolt settings
 // and hand them to PhysicsWorld.addConstraint, and the registry that owns each world's constraints until removal.
+import { checkVec3 } from '../physics-data/shape-spec.ts';
+import type { Vec3Like } from '../physics-data/vectors.ts';
 import type { BodyHandle } from './body-handle.ts';
 import type { JoltModule } from './jolt-backend.ts';
 import type { PhysicsWorld } from './physics-world.ts';
-import { checkVec3 } from './shapes.ts';
-import type { Vec3Like } from './types.ts';
 
 type Constraint = InstanceType<JoltModule['Constraint']>;
 

@@ -25,8 +25,6 @@ export function setDefaultPhysicsInitOptions(opts: PhysicsInitOptions): void {
   defaultOptions = opts;
 }
 
-type JoltFactoryFn = (moduleArgs: Record<string, unknown>) => Promise<unknown>;
-
 function chooseOptions(opts?: PhysicsInitOptions): PhysicsInitOptions {
   const chosen = opts && (opts.wasmBinary || opts.wasmUrl) ? opts : (defaultOptions ?? {});
   if (!chosen.wasmBinary && !chosen.wasmUrl) {
@@ -38,9 +36,9 @@ function chooseOptions(opts?: PhysicsInitOptions): PhysicsInitOptions {
   return chosen;
 }
 
-async function joltFactory(): Promise<JoltFactoryFn> {
+async function joltFactory(): Promise<typeof JoltFactory> {
   const { default: factory } = await import('jolt-physics/wasm');
-  return factory as unknown as JoltFactoryFn;
+  return factory;
 }
 
 /** Loads Jolt once; later calls (with any options) return the same module. */
@@ -56,7 +54,7 @@ export function loadJolt(opts?: PhysicsInitOptions): Promise<JoltModule> {
         const url = chosen.wasmUrl!;
         moduleArgs.locateFile = () => url;
       }
-      const module = (await factory(moduleArgs)) as JoltModule;
+      const module: JoltModule = await factory(moduleArgs);
       loaded = module;
       return module;
     })();
@@ -93,14 +91,14 @@ function compiledWasm(chosen: PhysicsInitOptions): Promise<WebAssembly.Module> {
  */
 export async function createJoltInstance(opts?: PhysicsInitOptions): Promise<JoltModule> {
   const chosen = chooseOptions(opts);
-  const [factory, wasm] = await Promise.all([joltFactory(), compiledWasm(chosen)]);
+  const [factory, wasm]: [typeof JoltFactory, WebAssembly.Module] = await Promise.all([joltFactory(), compiledWasm(chosen)]);
   const instantiateWasm = (imports: WebAssembly.Imports, receive: (instance: WebAssembly.Instance) => void): Record<string, never> => {
     WebAssembly.instantiate(wasm, imports).then(receive, (err: unknown) => {
       throw err;
     });
     return {};
   };
-  return (await factory({ instantiateWasm })) as JoltModule;
+  return factory({ instantiateWasm });
 }
 
 /** Awaits the module; call once at start-up (PhysicsWorld.create does it for you). */

@@ -1,5 +1,8 @@
 // PhysicsWorld: one Jolt PhysicsSystem, its body registry with stable ids, the factories, stepping, sensors and
 // limits. Owns every Jolt object it creates; callers only ever see plain copies and BodyHandles.
+import { checkQuat, checkVec3, STATIC_ONLY_KINDS, validateShapeSpec, type ShapeSpec } from '../physics-data/shape-spec.ts';
+import { IDENTITY_QUAT, type QuatLike, type Vec3Like } from '../physics-data/vectors.ts';
+import { TICK_DT_SECONDS } from '../tick-rate.ts';
 import { BodyHandle, type BodyRole, type JoltBody } from './body-handle.ts';
 import { createJoltInstance, loadJolt, type JoltModule } from './jolt-backend.ts';
 import { createLayerFilters, type LayerFilters } from './layers.ts';
@@ -11,20 +14,57 @@ import { RayQueries, type RayHit } from './queries.ts';
 import { SensorHub, type SensorEvent } from './sensors.ts';
 import { BodySlots } from './body-slots.ts';
 import { BodyStateReader, type BodyStates } from './body-state-reader.ts';
-import { buildValidatedShape, checkQuat, checkVec3, estimateShapeBytes, STATIC_ONLY_KINDS, validateShapeSpec, type JoltShape, type ShapeSpec } from './shapes.ts';
-import { IDENTITY_QUAT, type BodyOptions, type MotionKind, type QuatLike, type Vec3Like } from './types.ts';
+import { buildValidatedShape, estimateShapeBytes, type JoltShape } from './shapes.ts';
+import type { BodyOptions, MotionKind } from './types.ts';
 import { ensureHeapRoom, ensureRoomForWorld, estimateStateSaveBytes, resolveWorldLimits, StepBudget, type PhysicsWorldOptions, type WorldLimits } from './world-limits.ts';
 
 export type { PhysicsWorldOptions } from './world-limits.ts';
 
-/** The fixed tick the server runs: 60 Hz. */
-export const FIXED_DT_SECONDS = 1 / 60;
 const MAX_STEP_SECONDS = 1 / 30;
 const SUBSTEP_THRESHOLD_SECONDS = 1 / 55;
 /** Heap bytes reserved per constraint (measured ≤ 700 B for a hinge). */
 const CONSTRAINT_HEAP_BYTES = 4096;
 
 type J = JoltModule;
+
+/** What a tracked body is, as PhysicsWorld's factories and the character controller register it. */
+export interface TrackInfo {
+  motion: MotionKind;
+  layer: number;
+  mask: number;
+  isSensor: boolean;
+  role: BodyRole;
+  shape: ShapeSpec | undefined;
+  opts: BodyOptions;
+}
+
+/**
+ * The part of a world that is not public API: the rest of shared/physics (characters, queries) and, through
+ * shared/physics/internal.ts, shared/sim's checkpoints and tick use it. index.ts does not export it.
+ */
+export interface WorldInternals {
+  /** Deterministic Jolt BodyID allocation (checkpoints save and restore it). */
+  readonly slots: BodySlots;
+  /** Per-world helpers (ray casts, characters) register cleanups here. */
+  readonly disposers: Set<() => void>;
+  /** The sensor hub (checkpoints export/import its open overlaps; the simulation drains it). */
+  readonly sensorHub: SensorHub;
+  /** Registers a Jolt body (also character inner bodies) under the next stable id, or under `id`. */
+  track(body: JoltBody, info: TrackInfo, id?: number): BodyHandle;
+  /** Forgets a body without touching Jolt (the character controller removes its own inner body). */
+  untrack(handle: BodyHandle): void;
+  /** The handle for a Jolt BodyID index+sequence number. */
+  bodyByJoltId(joltId: number): BodyHandle | undefined;
+  /** Restores the id counter (checkpoint restore). */
+  setNextBodyId(next: number): void;
+}
+
+let internalsOf: (world: PhysicsWorld) => WorldInternals;
+
+/** A world's internals (see WorldInternals): for shared/physics and shared/sim only. */
+export function worldInternals(world: PhysicsWorld): WorldInternals {
+  return internalsOf(world);
+}
 
 /** A Jolt world with stable body ids; create it with `await PhysicsWorld.create()`. */
 export class PhysicsWorld {
@@ -34,8 +74,7 @@ export class PhysicsWorld {
   readonly filters: LayerFilters;
   readonly maxBodies: number;
   readonly minFreeHeapBytes: number;
-  /** @internal Deterministic Jolt BodyID allocation (checkpoints save and restore it). */
-  readonly slots: BodySlots;
+  private readonly slots: BodySlots;
   private readonly joltInterface: InstanceType<J['JoltInterface']>;
   private readonly table = new BodyTable();
   private readonly constraints: ConstraintRegistry;
@@ -47,8 +86,12 @@ export class PhysicsWorld {
   private rays: RayQueries | null = null;
   private destroyed = false;
   private readonly stateReader: BodyStateReader;
-  /** @internal Per-world helpers (ray casts, characters) register cleanups here. */
-  readonly disposers = new Set<() => void>();
+  private readonly disposers = new Set<() => void>();
+  private readonly internals: WorldInternals;
+
+  static {
+    internalsOf = (world) => world.internals;
+  }
 
   private constructor(J: J, limits: WorldLimits, gravity: Vec3Like) {
     this.jolt = J;
@@ -75,6 +118,17 @@ export class PhysicsWorld {
       isSensorJoltId: (joltId) => this.table.isSensorJoltId(joltId),
       isStaticJoltId: (joltId) => this.table.byJoltId(joltId)?.motion === 'static',
     });
+    this.internals = {
+      slots: this.slots,
+      disposers: this.disposers,
+      sensorHub: this.sensors,
+      track: (body, info, id) => this.track(body, info, id),
+      untrack: (handle) => this.untrack(handle),
+      bodyByJoltId: (joltId) => this.table.byJoltId(joltId),
+      setNextBodyId: (next) => {
+        this.nextBodyId = next;
+      },
+    };
     this.setGravity(gravity.x, gravity.y, gravity.z);
   }
 
@@ -114,10 +168,10 @@ export class PhysicsWorld {
     return this.deliverSensorEvents();
   }
 
-  /** The server's fixed tick: exactly 1/60 s with one collision step. */
+  /** The server's fixed tick: exactly TICK_DT_SECONDS (1/60 s) with one collision step. */
   stepFixed(): SensorEvent[] {
     this.live();
-    this.joltInterface.Step(FIXED_DT_SECONDS, 1);
+    this.joltInterface.Step(TICK_DT_SECONDS, 1);
     return this.deliverSensorEvents();
   }
 
@@ -278,8 +332,7 @@ export class PhysicsWorld {
     return handle;
   }
 
-  /** @internal Registers a Jolt body (also character inner bodies) under the next stable id. */
-  track(body: JoltBody, info: { motion: MotionKind; layer: number; mask: number; isSensor: boolean; role: BodyRole; shape: ShapeSpec | undefined; opts: BodyOptions }, id: number = this.nextBodyId++): BodyHandle {
+  private track(body: JoltBody, info: TrackInfo, id: number = this.nextBodyId++): BodyHandle {
     const joltId = body.GetID().GetIndexAndSequenceNumber();
     const handle = new BodyHandle({
       J: this.jolt,
@@ -301,8 +354,7 @@ export class PhysicsWorld {
     return handle;
   }
 
-  /** @internal Forgets a body without touching Jolt (the character controller removes its own inner body). */
-  untrack(handle: BodyHandle): void {
+  private untrack(handle: BodyHandle): void {
     this.sensors.forgetBody(handle.joltId);
     this.slots.release(handle.joltId);
     this.table.delete(handle);
@@ -364,34 +416,19 @@ export class PhysicsWorld {
     return this.table.get(id);
   }
 
-  /** @internal The handle for a Jolt BodyID index+sequence number. */
-  bodyByJoltId(joltId: number): BodyHandle | undefined {
-    return this.table.byJoltId(joltId);
-  }
-
   /** Stable ids of every tracked body, ascending (a copy). */
   bodyIds(): number[] {
     return this.table.sortedIds.slice();
   }
 
-  /** The id the next body will get; with setNextBodyId, lets checkpoints restore id allocation. */
+  /** The id the next body will get (checkpoints save it and restore it through WorldInternals.setNextBodyId). */
   get nextId(): number {
     return this.nextBodyId;
-  }
-
-  /** @internal Restores the id counter (checkpoint restore). */
-  setNextBodyId(next: number): void {
-    this.nextBodyId = next;
   }
 
   /** Stable ids of bodies currently overlapping a sensor, ascending. */
   sensorOverlaps(sensor: BodyHandle | number): number[] {
     return this.sensors.overlapping(typeof sensor === 'number' ? sensor : sensor.id);
-  }
-
-  /** @internal The sensor hub (checkpoints export/import its open overlaps). */
-  get sensorHub(): SensorHub {
-    return this.sensors;
   }
 
   // ── motion control ────────────────────────────────────────────────────────────────────────────────────────
@@ -419,7 +456,7 @@ export class PhysicsWorld {
   }
 
   /** Moves a kinematic body so it reaches pos/rot after dtSeconds (velocity-based: pushes dynamics). */
-  moveKinematic(b: BodyHandle | number, pos: Vec3Like, rot: QuatLike | null, dtSeconds: number = FIXED_DT_SECONDS): void {
+  moveKinematic(b: BodyHandle | number, pos: Vec3Like, rot: QuatLike | null, dtSeconds: number = TICK_DT_SECONDS): void {
     motion.moveKinematic(this, this.handleOf(b, 'moveKinematic'), pos, rot, dtSeconds);
   }
 
@@ -433,7 +470,7 @@ export class PhysicsWorld {
   private queries(): RayQueries {
     this.live();
     if (!this.rays) {
-      const rays = new RayQueries(this);
+      const rays = new RayQueries(this, (joltId) => this.table.byJoltId(joltId));
       this.rays = rays;
       this.disposers.add(() => {
         rays.dispose();

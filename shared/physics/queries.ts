@@ -1,10 +1,11 @@
 // Ray casts (seed §25.9): closest hit with point, body id, normal and fraction; plus an allocation-free rayDownY
 // that reuses cached Jolt scratch objects. Rays ignore the Trigger group (sensors are not surfaces).
+import { checkVec3 } from '../physics-data/shape-spec.ts';
+import type { Vec3Like } from '../physics-data/vectors.ts';
 import type { JoltModule } from './jolt-backend.ts';
 import { CollisionLayer, makeBroadPhaseFilter, makeObjectLayerFilter, packObjectLayer } from './layers.ts';
+import type { BodyHandle } from './body-handle.ts';
 import type { PhysicsWorld } from './physics-world.ts';
-import { checkVec3 } from './shapes.ts';
-import type { Vec3Like } from './types.ts';
 
 /** The nearest hit of a ray. */
 export interface RayHit {
@@ -25,6 +26,7 @@ const QUERY_MASK_ALL = CollisionLayer.All & ~CollisionLayer.Trigger;
 export class RayQueries {
   private readonly J: J;
   private readonly world: PhysicsWorld;
+  private readonly bodyByJoltId: (joltId: number) => BodyHandle | undefined;
   private readonly settings: InstanceType<J['RayCastSettings']>;
   private readonly bodyFilter: InstanceType<J['BodyFilter']>;
   private readonly shapeFilter: InstanceType<J['ShapeFilter']>;
@@ -34,10 +36,12 @@ export class RayQueries {
   private readonly ray: InstanceType<J['RRayCast']>;
   private readonly collector: InstanceType<J['CastRayClosestHitCollisionCollector']>;
 
-  constructor(world: PhysicsWorld) {
+  /** `bodyByJoltId` maps a hit's Jolt BodyID to the world's handle. */
+  constructor(world: PhysicsWorld, bodyByJoltId: (joltId: number) => BodyHandle | undefined) {
     const J = world.jolt;
     this.J = J;
     this.world = world;
+    this.bodyByJoltId = bodyByJoltId;
     this.settings = new J.RayCastSettings(); // owned here, freed in dispose()
     this.bodyFilter = new J.BodyFilter(); // accept-all; owned here
     this.shapeFilter = new J.ShapeFilter(); // accept-all; owned here
@@ -72,7 +76,7 @@ export class RayQueries {
     const hit = this.collector.mHit;
     const fraction = hit.mFraction;
     const point = { x: origin.x + direction.x * fraction, y: origin.y + direction.y * fraction, z: origin.z + direction.z * fraction };
-    const handle = this.world.bodyByJoltId(hit.mBodyID.GetIndexAndSequenceNumber());
+    const handle = this.bodyByJoltId(hit.mBodyID.GetIndexAndSequenceNumber());
     let normal: Vec3Like = { x: -direction.x, y: -direction.y, z: -direction.z };
     if (handle && !handle.removed) {
       const p = new J.RVec3(point.x, point.y, point.z); // copied by the call, freed below

@@ -1,20 +1,6 @@
-// Plain value types of the physics API: vectors, quaternions and the one BodyOptions every factory takes.
-// No Jolt objects here: callers get copies, never handles into the WASM heap.
-
-/** A plain 3-vector (metres, metres per second, …: the name of the field that holds it says which). */
-export interface Vec3Like {
-  x: number;
-  y: number;
-  z: number;
-}
-
-/** A plain unit quaternion. */
-export interface QuatLike {
-  x: number;
-  y: number;
-  z: number;
-  w: number;
-}
+// Plain value types of the physics API: motion kinds, sensor callbacks and the one BodyOptions every factory takes
+// (vectors and quaternions: shared/physics-data/vectors.ts). No Jolt objects here: callers get copies.
+import type { Vec3Like } from '../physics-data/vectors.ts';
 
 /** How a body moves: nailed down, simulated, or driven by code. */
 export type MotionKind = 'static' | 'dynamic' | 'kinematic';
@@ -69,5 +55,3 @@ export interface BodyOptions<Other = unknown> {
   /** Bodies sharing this group id (an integer in [0, 0xfffffffe]) never collide with each other (a shooter, its bullets). */
   noCollideGroup?: number;
 }
-
-export const IDENTITY_QUAT: QuatLike = Object.freeze({ x: 0, y: 0, z: 0, w: 1 });

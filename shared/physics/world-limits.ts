@@ -1,8 +1,8 @@
 // World limits: the sizes a PhysicsWorld is created with and the two fixed budgets Emscripten must never see
 // overflow (it aborts the whole module): the 128 MiB WASM heap and Jolt's 10 MiB step temp allocator.
 // Every coefficient below was measured on jolt-physics 1.1.0 (Jolt 5.6.0); docs/physics.md lists the runs.
+import type { Vec3Like } from '../physics-data/vectors.ts';
 import type { PhysicsInitOptions } from './jolt-backend.ts';
-import type { Vec3Like } from './types.ts';
 
 /** Options of PhysicsWorld.create: how to load Jolt plus the world's fixed limits. */
 export interface PhysicsWorldOptions extends PhysicsInitOptions {

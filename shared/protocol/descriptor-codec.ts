@@ -1,6 +1,6 @@
 // Body descriptors on the wire (welcome geometry, snapshot spawns): a table of distinct shapes plus one compact row
 // per body, and the checked inverse that turns untrusted msgpack data back into BodyDescriptor[] or a clear Error.
-import type { ShapeSpec } from '../physics/shapes.ts';
+import type { ShapeSpec } from '../physics-data/shape-spec.ts';
 import type { BodyDescriptor } from '../sim/types.ts';
 
 /** Wire form: [shapes, rows]; a row is [id, shapeIndex, r, g, b, motion, hidden, playerId|-1, px, py, pz, qx, qy, qz, qw]. */

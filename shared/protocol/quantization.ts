@@ -1,6 +1,6 @@
 // Snapshot quantization: the format (position grid from the scenario's bounds, rotation bits) and the float ⇄ integer
 // mappings for body poses (smallest-three quaternions) and character states. Pure arithmetic: no engine Math.
-import type { Vec3Like } from '../physics/types.ts';
+import type { Vec3Like } from '../physics-data/vectors.ts';
 
 /** Largest position step (m) the default format allows on any axis: quantization error is at most half of it. */
 export const DEFAULT_MAX_POSITION_STEP_METRES = 0.002;
@@ -95,12 +95,12 @@ export function snapshotFormatFromSpec(bounds: Bounds, spec: SnapshotFormatSpec)
     throw new Error(`snapshot format: rotationBits must be an integer in [${MIN_ROTATION_BITS}, ${MAX_ROTATION_BITS}], got ${String(rb)}`);
   }
   const steps = [spec.positionSteps[0], spec.positionSteps[1], spec.positionSteps[2]] as const;
-  const axes = ['x', 'y', 'z'] as const;
+  const stepMetres = (axis: 'x' | 'y' | 'z', step: number): number => (bounds.max[axis] - bounds.min[axis]) / step;
   return Object.freeze({
     bounds: Object.freeze({ min: { ...bounds.min }, max: { ...bounds.max } }),
     positionSteps: steps,
     positionBits: [bitsForSteps(steps[0]), bitsForSteps(steps[1]), bitsForSteps(steps[2])] as const,
-    positionStepMetres: axes.map((a, i) => (bounds.max[a] - bounds.min[a]) / steps[i]) as unknown as readonly [number, number, number],
+    positionStepMetres: [stepMetres('x', steps[0]), stepMetres('y', steps[1]), stepMetres('z', steps[2])] as const,
     rotationBits: rb,
     rotationMax: ((1 << rb) >>> 0) - 2,
   });

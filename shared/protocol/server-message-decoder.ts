@@ -9,16 +9,6 @@ import type { ScenarioInfo, ServerMessage, WelcomeMessage } from './server-messa
 /** A decoded server message, or why it could not be decoded. */
 export type ServerDecodeResult = { ok: true; message: ServerMessage } | { ok: false; error: string };
 
-const EVENT_FIELDS: Record<SimEvent['type'], Record<string, 'number' | 'string' | 'number?'>> = {
-  sensorEnter: { sensorId: 'number', bodyId: 'number', playerId: 'number?' },
-  sensorExit: { sensorId: 'number', bodyId: 'number', playerId: 'number?' },
-  playerJoined: { playerId: 'number', name: 'string', bodyId: 'number?' },
-  playerLeft: { playerId: 'number' },
-  bodySpawned: { bodyId: 'number' },
-  bodyRemoved: { bodyId: 'number' },
-  scenario: { name: 'string', value: 'number' },
-};
-
 class DecodeError extends Error {}
 
 function need(cond: boolean, message: string): asserts cond {
@@ -83,19 +73,34 @@ function decodeWelcome(v: unknown): WelcomeMessage {
   };
 }
 
+/** Reads one event of a known type from its wire object (fields checked in this order; `tick` already read). */
+type EventReader<T extends SimEvent['type']> = (v: Record<string, unknown>, tick: number, what: string) => Extract<SimEvent, { type: T }>;
+
+const EVENT_READERS: { [T in SimEvent['type']]: EventReader<T> } = {
+  sensorEnter: (v, tick, w) => ({ type: 'sensorEnter', tick, sensorId: num(v.sensorId, `${w}.sensorId`), bodyId: num(v.bodyId, `${w}.bodyId`), ...(v.playerId === undefined ? {} : { playerId: num(v.playerId, `${w}.playerId`) }) }),
+  sensorExit: (v, tick, w) => ({ type: 'sensorExit', tick, sensorId: num(v.sensorId, `${w}.sensorId`), bodyId: num(v.bodyId, `${w}.bodyId`), ...(v.playerId === undefined ? {} : { playerId: num(v.playerId, `${w}.playerId`) }) }),
+  playerJoined: (v, tick, w) => ({ type: 'playerJoined', tick, playerId: num(v.playerId, `${w}.playerId`), name: str(v.name, `${w}.name`), ...(v.bodyId === undefined ? {} : { bodyId: num(v.bodyId, `${w}.bodyId`) }) }),
+  playerLeft: (v, tick, w) => ({ type: 'playerLeft', tick, playerId: num(v.playerId, `${w}.playerId`) }),
+  bodySpawned: (v, tick, w) => ({ type: 'bodySpawned', tick, bodyId: num(v.bodyId, `${w}.bodyId`) }),
+  bodyRemoved: (v, tick, w) => ({ type: 'bodyRemoved', tick, bodyId: num(v.bodyId, `${w}.bodyId`) }),
+  scenario: (v, tick, w) => ({ type: 'scenario', tick, name: str(v.name, `${w}.name`), value: num(v.value, `${w}.value`) }),
+};
+
+function isEventType(type: unknown): type is SimEvent['type'] {
+  return typeof type === 'string' && Object.prototype.hasOwnProperty.call(EVENT_READERS, type);
+}
+
 function decodeEvent(v: unknown, i: number): SimEvent {
   const what = `events[${i}]`;
   need(isObject(v), `${what} must be an object`);
   const type = v.type;
-  need(typeof type === 'string' && Object.prototype.hasOwnProperty.call(EVENT_FIELDS, type), `${what}.type ${JSON.stringify(String(type))} is not a known event`);
-  const out: Record<string, unknown> = { type, tick: int(v.tick, `${what}.tick`) };
-  for (const [field, kind] of Object.entries(EVENT_FIELDS[type as SimEvent['type']])) {
-    const value = v[field];
-    if (kind === 'number?' && value === undefined) continue;
-    if (kind === 'string') out[field] = str(value, `${what}.${field}`);
-    else out[field] = num(value, `${what}.${field}`);
-  }
-  return out as unknown as SimEvent;
+  need(isEventType(type), `${what}.type ${JSON.stringify(String(type))} is not a known event`);
+  return readEvent(type, v, int(v.tick, `${what}.tick`), what);
+}
+
+function readEvent<T extends SimEvent['type']>(type: T, v: Record<string, unknown>, tick: number, what: string): SimEvent {
+  const read: EventReader<T> = EVENT_READERS[type];
+  return read(v, tick, what);
 }
 
 function decode(value: unknown): ServerMessage {

@@ -1,6 +1,6 @@
 // The quantized world state one snapshot describes (QuantizedFrame), built once per tick from the simulation's bulk
 // read and shared by every client's encoder; and its float view (SnapshotView) for interpolation and rendering.
-import { BODY_STATE_STRIDE, BodyFlag } from '../physics/body-handle.ts';
+import { BODY_STATE_STRIDE, BodyFlag } from '../physics-data/body-state.ts';
 import type { CharacterState } from '../sim/types.ts';
 import {
   GROUND_STATES,

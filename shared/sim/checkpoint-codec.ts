@@ -3,7 +3,7 @@
 import { restoreStateBytes, saveStateBytes, type SensorEvent } from '../physics/index.ts';
 import type { BodyRecord } from './body-registry.ts';
 import type { Bullet } from './bullets.ts';
-import { ByteReader, ByteWriter } from './byte-io.ts';
+import { ByteReader, ByteWriter } from '../byte-io.ts';
 import { restoreData, type CheckpointData } from './checkpoint.ts';
 import { CHARACTER_SHAPE, type PlayerSnapshot } from './players.ts';
 import { readRecord, recordBytes, writeRecord } from './recipe-codec.ts';
@@ -40,20 +40,20 @@ function section(w: ByteWriter, tag: number, body: () => void): void {
 }
 
 function writeSetup(w: ByteWriter, core: SimCore): void {
-  w.string(core.def.name);
+  w.u32PrefixedString(core.def.name);
   const names = Object.keys(core.params).sort();
   w.u32(names.length);
-  for (const n of names) w.string(n).f64(core.params[n]);
-  if (typeof core.seed === 'string') w.u8(1).string(core.seed);
+  for (const n of names) w.u32PrefixedString(n).f64(core.params[n]);
+  if (typeof core.seed === 'string') w.u8(1).u32PrefixedString(core.seed);
   else w.u8(0).u32(core.seed);
 }
 
 function writeState(w: ByteWriter, d: CheckpointData): void {
   w.u32(d.tick).u32s(d.prng).u32(d.joinCount).u32(d.nextBodyId).u32(d.constraintCount);
-  w.u32(d.slots.highWater).u32s(d.slots.free).bytes(d.slots.sequences);
+  w.u32(d.slots.highWater).u32s(d.slots.free).u32PrefixedBytes(d.slots.sequences);
   w.u32(d.players.length);
   for (const p of d.players) {
-    w.u32(p.playerId).string(p.name).u32(p.joinIndex).u32(p.bodyId).u32(p.joltId);
+    w.u32(p.playerId).u32PrefixedString(p.name).u32(p.joinIndex).u32(p.bodyId).u32(p.joltId);
     w.i32(p.input.moveX).i32(p.input.moveZ).i32(p.input.yaw).i32(p.input.pitch).i32(p.input.buttons).f64(p.nextFireTick);
   }
   w.u32(d.bullets.length);
@@ -68,7 +68,7 @@ function writeState(w: ByteWriter, d: CheckpointData): void {
 /** Encodes a checkpoint of `core` (data from captureData) with Jolt's state as bytes. */
 export function encodeCheckpoint(core: SimCore, d: CheckpointData): Uint8Array {
   const J = core.world.jolt;
-  const w = new ByteWriter();
+  const w = new ByteWriter(4096);
   for (let i = 0; i < CHECKPOINT_MAGIC.length; i++) w.u8(CHECKPOINT_MAGIC.charCodeAt(i));
   w.u32(CHECKPOINT_FORMAT_VERSION);
   writeSetup(w, core);
@@ -77,10 +77,10 @@ export function encodeCheckpoint(core: SimCore, d: CheckpointData): Uint8Array {
     w.u32(d.records.length);
     for (const r of d.records) writeRecord(w, r);
   });
-  section(w, TAG_JOLT, () => w.bytes(saveStateBytes(J, (r) => core.world.system.SaveState(r, J.EStateRecorderState_All))));
+  section(w, TAG_JOLT, () => w.u32PrefixedBytes(saveStateBytes(J, (r) => core.world.system.SaveState(r, J.EStateRecorderState_All))));
   section(w, TAG_CHARACTERS, () => {
     w.u32(d.characterStates.size);
-    for (const [id, bytes] of d.characterStates) w.u32(id).bytes(bytes);
+    for (const [id, bytes] of d.characterStates) w.u32(id).u32PrefixedBytes(bytes);
   });
   const [a, b] = checksum(w.finish(), w.length);
   w.u32(a).u32(b);
@@ -88,11 +88,11 @@ export function encodeCheckpoint(core: SimCore, d: CheckpointData): Uint8Array {
 }
 
 function readSetup(r: ByteReader, core: SimCore): void {
-  const name = r.string('scenario name');
+  const name = r.u32PrefixedString('scenario name');
   const params: Record<string, number> = {};
   const n = r.count('parameter count', 12);
-  for (let i = 0; i < n; i++) params[r.string('parameter name')] = r.f64('parameter value');
-  const seed: number | string = r.u8('seed kind') === 1 ? r.string('seed') : r.u32('seed');
+  for (let i = 0; i < n; i++) params[r.u32PrefixedString('parameter name')] = r.f64('parameter value');
+  const seed: number | string = r.u8('seed kind') === 1 ? r.u32PrefixedString('seed') : r.u32('seed');
   const mine = Object.keys(core.params).sort();
   const theirs = Object.keys(params).sort();
   const sameParams = mine.length === theirs.length && mine.every((k, i) => k === theirs[i] && Object.is(core.params[k], params[k]));
@@ -111,12 +111,12 @@ function readState(r: ByteReader): Omit<CheckpointData, 'records' | 'characterSt
   const joinCount = r.u32('join count');
   const nextBodyId = r.u32('next body id');
   const constraintCount = r.u32('constraint count');
-  const slots = { highWater: r.u32('slot high water'), free: r.u32s('free slots'), sequences: r.bytesField('slot sequences') };
+  const slots = { highWater: r.u32('slot high water'), free: r.u32s('free slots'), sequences: r.u32PrefixedBytes('slot sequences') };
   const players: PlayerSnapshot[] = [];
   const np = r.count('player count', 45);
   for (let i = 0; i < np; i++) {
     const playerId = r.u32('player id');
-    const name = r.string('player name');
+    const name = r.u32PrefixedString('player name');
     const joinIndex = r.u32('join index');
     const bodyId = r.u32('character body id');
     const joltId = r.u32('character jolt id');
@@ -140,7 +140,7 @@ function expectSection(r: ByteReader, tag: number, name: string): ByteReader {
   const len = r.u32(`${name} section length`);
   const start = r.offset;
   r.raw(len, `${name} section`);
-  return new ByteReader(r.bytes, `checkpoint ${name} section`, start, start + len);
+  return new ByteReader(r.bytes, start, start + len, `checkpoint ${name} section`);
 }
 
 /** Decodes a byte checkpoint and restores it into `core` (same scenario, params and seed). */
@@ -150,7 +150,7 @@ export function decodeCheckpoint(core: SimCore, bytes: Uint8Array): void {
   for (let i = 0; i < CHECKPOINT_MAGIC.length; i++) {
     if (bytes[i] !== CHECKPOINT_MAGIC.charCodeAt(i)) throw new Error('restoreCheckpointBytes: not a taos-physics checkpoint (bad magic)');
   }
-  const r = new ByteReader(bytes, 'checkpoint', CHECKPOINT_MAGIC.length, bytes.length - 8);
+  const r = new ByteReader(bytes, CHECKPOINT_MAGIC.length, bytes.length - 8, 'checkpoint');
   const version = r.u32('format version');
   if (version !== CHECKPOINT_FORMAT_VERSION) throw new Error(`restoreCheckpointBytes: format version ${version}, this build reads ${CHECKPOINT_FORMAT_VERSION}`);
   const [a, b] = checksum(bytes, bytes.length - 8);
@@ -166,11 +166,11 @@ export function decodeCheckpoint(core: SimCore, bytes: Uint8Array): void {
     records.push(readRecord(br, { sceneRecord: (id) => core.buildRecords.get(id), characterShape: CHARACTER_SHAPE, joinIndexOf: (id) => joinIndex.get(id) }));
   }
   for (let i = 1; i < records.length; i++) if (records[i].id <= records[i - 1].id) throw new Error('checkpoint: body records are not in ascending id order');
-  const jolt = expectSection(r, TAG_JOLT, 'jolt').bytesField('jolt state');
+  const jolt = expectSection(r, TAG_JOLT, 'jolt').u32PrefixedBytes('jolt state');
   const cr = expectSection(r, TAG_CHARACTERS, 'characters');
   const characterStates = new Map<number, Uint8Array>();
   const nc = cr.count('character count', 8);
-  for (let i = 0; i < nc; i++) characterStates.set(cr.u32('character player'), cr.bytesField('character state'));
+  for (let i = 0; i < nc; i++) characterStates.set(cr.u32('character player'), cr.u32PrefixedBytes('character state'));
   const data: CheckpointData = { ...state, records, characterStates };
   const J = core.world.jolt;
   const same = (live: BodyRecord, saved: BodyRecord): boolean => {

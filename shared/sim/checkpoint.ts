@@ -1,8 +1,8 @@
 // Checkpoints: capture everything a Simulation needs to resume (Jolt SaveState(All), each CharacterVirtual, the
 // JS-side state) and restore it, removing bodies and players added since and recreating those removed since
 // under their original stable ids and Jolt BodyIDs. The fast form keeps Jolt's bytes on the WASM heap.
-import { FastStateBuffer, type SensorEvent } from '../physics/index.ts';
-import type { BodyIdAllocatorState } from '../physics/body-id-allocator.ts';
+import { FastStateBuffer, type BodyIdAllocatorState, type SensorEvent } from '../physics/index.ts';
+import { worldInternals } from '../physics/internal.ts';
 import type { BodyRecord } from './body-registry.ts';
 import type { Bullet } from './bullets.ts';
 import { createCharacter, type PlayerSnapshot } from './players.ts';
@@ -28,17 +28,28 @@ export interface CheckpointData {
   constraintCount: number;
 }
 
+/** What a fast checkpoint holds; only this module reads it (through contentsOf). */
+interface CheckpointContents {
+  readonly data: CheckpointData;
+  readonly physics: FastStateBuffer;
+  /** The simulation core that made it (fast checkpoints restore only into their own simulation). */
+  readonly owner: SimCore;
+}
+
+let contentsOf: (cp: Checkpoint) => CheckpointContents;
+
 /** The fast in-memory checkpoint. Holds WASM memory: call dispose() when it is no longer needed. */
 export class Checkpoint {
   /** The tick the simulation will apply next after a restore (ticks applied when saved). */
   readonly tick: number;
-  /** @internal */
-  readonly data: CheckpointData;
-  /** @internal */
-  readonly physics: FastStateBuffer;
-  /** @internal The simulation core that made it (fast checkpoints restore only into their own simulation). */
-  readonly owner: SimCore;
+  private readonly data: CheckpointData;
+  private readonly physics: FastStateBuffer;
+  private readonly owner: SimCore;
   private disposed = false;
+
+  static {
+    contentsOf = (cp) => ({ data: cp.data, physics: cp.physics, owner: cp.owner });
+  }
 
   constructor(owner: SimCore, data: CheckpointData, physics: FastStateBuffer) {
     this.owner = owner;
@@ -75,13 +86,13 @@ export function captureData(core: SimCore, what: string): CheckpointData {
     prng: core.rng.getState(),
     joinCount: core.players.joinCount,
     nextBodyId: core.world.nextId,
-    slots: core.world.slots.save(),
+    slots: worldInternals(core.world).slots.save(),
     players: core.players.snapshot(),
     characterStates,
     bullets: core.bullets.snapshot(),
     records: core.registry.all(),
     scenarioState: core.instance.saveState ? core.instance.saveState().slice() : null,
-    overlaps: core.world.sensorHub.exportOverlaps(),
+    overlaps: worldInternals(core.world).sensorHub.exportOverlaps(),
     carriedSensor: core.carriedSensor.map((e) => ({ ...e })),
     constraintCount: core.world.constraintCount,
   };
@@ -151,15 +162,16 @@ export function restoreData(core: SimCore, data: CheckpointData, restorePhysics:
     }
     core.registry.replaceAll(data.records);
     if (world.bodyCount !== core.registry.size) throw new Error(`restoreCheckpoint: ${world.bodyCount} bodies in the world, ${core.registry.size} in the checkpoint`);
-    world.slots.restore(data.slots, data.records.map((r) => r.joltId));
-    world.setNextBodyId(data.nextBodyId);
+    const internals = worldInternals(world);
+    internals.slots.restore(data.slots, data.records.map((r) => r.joltId));
+    internals.setNextBodyId(data.nextBodyId);
     if (!restorePhysics()) throw new Error('restoreCheckpoint: Jolt refused the physics state (body set mismatch)');
     for (const p of core.players.inOrder()) {
       const bytes = data.characterStates.get(p.playerId);
       if (!bytes) throw new Error(`restoreCheckpoint: no character state for player ${p.playerId}`);
       p.controller.restoreState(bytes);
     }
-    world.sensorHub.importOverlaps(data.overlaps);
+    internals.sensorHub.importOverlaps(data.overlaps);
     core.carriedSensor = data.carriedSensor.map((e) => ({ ...e }));
     core.rng.setState(data.prng);
     core.tick = data.tick;
@@ -179,6 +191,7 @@ export function restoreData(core: SimCore, data: CheckpointData, restorePhysics:
 export function restoreCheckpoint(core: SimCore, cp: Checkpoint): void {
   if (!(cp instanceof Checkpoint)) throw new Error('restoreCheckpoint: expected a Checkpoint from saveCheckpoint()');
   if (cp.isDisposed) throw new Error('restoreCheckpoint: the checkpoint was disposed');
-  if (cp.owner !== core) throw new Error('restoreCheckpoint: a fast checkpoint restores only into the simulation that saved it (use the byte form)');
-  restoreData(core, cp.data, () => cp.physics.restore((r) => core.world.system.RestoreState(r)), (live, saved) => live === saved);
+  const { owner, data, physics } = contentsOf(cp);
+  if (owner !== core) throw new Error('restoreCheckpoint: a fast checkpoint restores only into the simulation that saved it (use the byte form)');
+  restoreData(core, data, () => physics.restore((r) => core.world.system.RestoreState(r)), (live, saved) => live === saved);
 }

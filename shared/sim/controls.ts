@@ -1,8 +1,8 @@
 // The control conventions every layer shares: how a command's move axes, yaw and pitch become a world-space walk
 // velocity and an aim direction. Arithmetic and det-math only, so server, replay and client agree to the bit.
+import type { Vec3Like } from '../physics-data/vectors.ts';
 import { detCos, detSin } from './det-math.ts';
 import { MOVE_STEPS, PITCH_STEPS, YAW_STEPS, type InputCommand } from './input.ts';
-import type { Vec3Like } from '../physics/index.ts';
 
 const TWO_PI = 6.283185307179586;
 const HALF_PI = 1.5707963267948966;

@@ -9,6 +9,8 @@ import { Simulation } from './simulation.ts';
 export const GOLDEN_SEED = 20240601;
 /** Ticks between two golden bot joins. */
 const GOLDEN_JOIN_SPACING_TICKS = 15;
+/** A golden run records its hash this often, so a changed run shows where it first departs. */
+export const GOLDEN_HASH_EVERY_TICKS = 60;
 
 /** The stored golden record of one scenario. */
 export interface GoldenFile {
@@ -29,7 +31,7 @@ export interface GoldenResult {
   bots: number;
   seed: number;
   hash: string;
-  /** Hash every 60 ticks (diagnostics: where a changed run first departs). */
+  /** The hash every GOLDEN_HASH_EVERY_TICKS ticks (diagnostics: where a changed run first departs). */
   checkpoints: Array<{ tick: number; hash: string }>;
 }
 
@@ -46,7 +48,7 @@ export async function runGolden(def: ScenarioDefinition, opts: { ticks?: number;
     const checkpoints: Array<{ tick: number; hash: string }> = [];
     for (let t = 0; t < ticks!; t++) {
       sim.step(script.next());
-      if (sim.tick % 60 === 0) checkpoints.push({ tick: sim.tick, hash: sim.stateHash() });
+      if (sim.tick % GOLDEN_HASH_EVERY_TICKS === 0) checkpoints.push({ tick: sim.tick, hash: sim.stateHash() });
     }
     return { scenario: def.name, ticks: ticks!, bots: bots!, seed, hash: sim.stateHash(), checkpoints };
   } finally {

@@ -1,6 +1,7 @@
 // The player table: one CharacterController per present player, the command each player last applied (repeated on
 // ticks without a new one), fire cooldowns, and how commands turn into walking, jumping and fire requests.
-import { CharacterController, CollisionLayer, type PhysicsWorld, type ShapeSpec, type Vec3Like } from '../physics/index.ts';
+import { CharacterController, CollisionLayer, type CharacterOptions, type PhysicsWorld, type ShapeSpec, type Vec3Like } from '../physics/index.ts';
+import { recreateCharacter } from '../physics/internal.ts';
 import { aimDirection, commandPitchRadians, commandYawRadians, walkVelocity } from './controls.ts';
 import { Button, NEUTRAL_INPUT, type InputCommand } from './input.ts';
 import type { PlayerRules } from './scenario.ts';
@@ -79,7 +80,7 @@ export interface PlayerSnapshot {
 
 /** Creates the character of a joining player at `feet`; `restoreIds` recreates a saved one exactly. */
 export function createCharacter(world: PhysicsWorld, playerId: number, joinIndex: number, feet: Vec3Like, restoreIds?: { id: number; joltId: number }): CharacterController {
-  return new CharacterController(world, {
+  const opts: CharacterOptions = {
     position: feet,
     radius: CHARACTER_RADIUS_METRES,
     halfHeight: CHARACTER_HALF_HEIGHT_METRES,
@@ -87,8 +88,8 @@ export function createCharacter(world: PhysicsWorld, playerId: number, joinIndex
     mask: CollisionLayer.All,
     noCollideGroup: joinIndex,
     name: `player ${playerId}`,
-    restoreIds,
-  });
+  };
+  return restoreIds ? recreateCharacter(world, opts, restoreIds) : new CharacterController(world, opts);
 }
 
 /** Present players by id; iteration helpers always go in ascending id order. */

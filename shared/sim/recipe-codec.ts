@@ -2,7 +2,7 @@
 // options as JSON, colour. Scene bodies are stored by id only: every simulation of the same setup builds them.
 import { IDENTITY_QUAT, type CompoundPart, type ShapeSpec } from '../physics/index.ts';
 import { playerColor, type BodyKind, type BodyRecord } from './body-registry.ts';
-import { ByteReader, ByteWriter } from './byte-io.ts';
+import { ByteReader, ByteWriter } from '../byte-io.ts';
 import type { Rgb, SpawnOptions } from './scenario.ts';
 import type { BodyDescriptor } from './types.ts';
 
@@ -114,12 +114,12 @@ export function writeRecord(w: ByteWriter, rec: BodyRecord): void {
   if (rec.kind === 'scene') return;
   w.f64(rec.position.x).f64(rec.position.y).f64(rec.position.z);
   if (rec.kind === 'character') {
-    w.u32(rec.descriptor.playerId!).string(rec.opts.name ?? '');
+    w.u32(rec.descriptor.playerId!).u32PrefixedString(rec.opts.name ?? '');
     return;
   }
   w.f64(rec.rotation.x).f64(rec.rotation.y).f64(rec.rotation.z).f64(rec.rotation.w);
   writeShape(w, rec.spec);
-  w.string(optionsJson(rec.opts, rec.id));
+  w.u32PrefixedString(optionsJson(rec.opts, rec.id));
   const d = rec.descriptor;
   w.u8(MOTIONS.indexOf(d.motion)).u8(d.hidden ? 1 : 0).f64(d.color[0]).f64(d.color[1]).f64(d.color[2]);
 }
@@ -153,7 +153,7 @@ export function readRecord(r: ByteReader, ctx: RecordContext): BodyRecord {
   const position = { x: r.finite('x'), y: r.finite('y'), z: r.finite('z') };
   if (kind === 'character') {
     const playerId = r.u32('player id');
-    const name = r.string('player name');
+    const name = r.u32PrefixedString('player name');
     const joinIndex = ctx.joinIndexOf(playerId);
     if (joinIndex === undefined) throw new Error(`checkpoint: character body ${id} belongs to player ${playerId}, who is not in the checkpoint`);
     const descriptor: BodyDescriptor = { id, shape: ctx.characterShape, color: playerColor(joinIndex), motion: 'kinematic', hidden: false, playerId, position, rotation: { ...IDENTITY_QUAT } };
@@ -163,7 +163,7 @@ export function readRecord(r: ByteReader, ctx: RecordContext): BodyRecord {
   const spec = readShape(r);
   let opts: SpawnOptions;
   try {
-    opts = JSON.parse(r.string('body options')) as SpawnOptions;
+    opts = JSON.parse(r.u32PrefixedString('body options')) as SpawnOptions;
   } catch (err) {
     throw new Error(`checkpoint: body ${id}'s options are not valid JSON (${(err as Error).message})`);
   }

@@ -2,13 +2,13 @@
 // characters and the tick's inputs. Rejects what a checkpoint could not carry (callbacks on bodies spawned mid-run).
 import type { BodyHandle, QuatLike, ShapeSpec, Vec3Like } from '../physics/index.ts';
 import type { ScenarioContext, SpawnOptions } from './scenario.ts';
-import { createBody, destroyBody, type SimCore } from './sim-core.ts';
+import { createBody, destroyBody, type SimBase } from './sim-core.ts';
 
 /** Longest scenario event name. */
 const MAX_EVENT_NAME = 64;
 
 /** Builds the context object for `core` (one per simulation; `tick` reads live). */
-export function makeScenarioContext(core: SimCore): ScenarioContext {
+export function makeScenarioContext(core: SimBase): ScenarioContext {
   return {
     world: core.world,
     rng: core.rng,

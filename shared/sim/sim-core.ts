@@ -10,7 +10,13 @@ import type { ParamValues, ScenarioContext, ScenarioDefinition, ScenarioInstance
 import type { PlayerCommand, SimEvent } from './types.ts';
 
 /** Everything a Simulation owns. Only shared/sim touches this object. */
-export interface SimCore {
+export interface SimCore extends SimBase {
+  instance: ScenarioInstance;
+  ctx: ScenarioContext;
+}
+
+/** A simulation's state before its scenario is built: everything but the scenario's context and instance. */
+export interface SimBase {
   readonly def: ScenarioDefinition;
   readonly params: ParamValues;
   readonly seed: number | string;
@@ -22,8 +28,6 @@ export interface SimCore {
   readonly bullets: BulletList;
   /** Records of the bodies the scenario built (tick 0 scene), kept for the whole session. */
   readonly buildRecords: Map<number, BodyRecord>;
-  instance: ScenarioInstance;
-  ctx: ScenarioContext;
   /** Ticks applied so far; the next record must carry this tick number. */
   tick: number;
   /** 'building' while the scenario builds, 'tick' inside step(), 'idle' between ticks. */
@@ -53,7 +57,7 @@ function checkSpawnOptions(opts: SpawnOptions, what: string): void {
 }
 
 /** Creates a body through the world and records it; `at` recreates a saved body under its ids. */
-export function createBody(core: SimCore, kind: BodyKind, spec: ShapeSpec, position: Vec3Like, rotation: QuatLike | null, opts: SpawnOptions, at?: { id: number; joltId: number }): BodyRecord {
+export function createBody(core: SimBase, kind: BodyKind, spec: ShapeSpec, position: Vec3Like, rotation: QuatLike | null, opts: SpawnOptions, at?: { id: number; joltId: number }): BodyRecord {
   const what = `${kind} ${spec?.kind ?? 'shape'}${opts?.name ? ` "${opts.name}"` : ''}`;
   checkSpawnOptions(opts, what);
   const handle = core.world.addShape(spec, position, rotation, opts, at);
@@ -69,13 +73,13 @@ export function recreateBody(core: SimCore, record: BodyRecord): void {
 }
 
 /** Removes a non-character body from the world and the registry. */
-export function destroyBody(core: SimCore, id: number): void {
+export function destroyBody(core: SimBase, id: number): void {
   core.world.removeBody(id);
   core.registry.delete(id);
 }
 
 /** Throws when a scenario added or removed bodies behind the simulation's back (through ctx.world). */
-export function assertRegistryInSync(core: SimCore, hook: string): void {
+export function assertRegistryInSync(core: SimBase, hook: string): void {
   if (core.world.bodyCount !== core.registry.size) {
     throw new Error(
       `scenario ${core.def.name}: ${hook} changed bodies through ctx.world directly (${core.world.bodyCount} in the world, ` +

@@ -1,6 +1,7 @@
 // Simulation: one deterministic session of a scenario — a PhysicsWorld, the seeded Prng, the 60 Hz tick counter,
 // the player table, body descriptors and events — with state hashes, divergence reports and checkpoints.
 import { PhysicsWorld, type PhysicsWorldOptions } from '../physics/index.ts';
+import { worldInternals } from '../physics/internal.ts';
 import { BodyRegistry } from './body-registry.ts';
 import { BulletList } from './bullets.ts';
 import { captureData, restoreCheckpoint, saveCheckpoint, type Checkpoint } from './checkpoint.ts';
@@ -8,8 +9,8 @@ import { decodeCheckpoint, encodeCheckpoint } from './checkpoint-codec.ts';
 import { PlayerTable, resolvePlayerRules } from './players.ts';
 import { Prng } from './prng.ts';
 import { makeScenarioContext } from './scenario-context.ts';
-import { resolveParams, type ParamValues, type ScenarioDefinition } from './scenario.ts';
-import { assertRegistryInSync, type SimCore } from './sim-core.ts';
+import { resolveParams, type ParamValues, type ScenarioDefinition, type ScenarioInstance } from './scenario.ts';
+import { assertRegistryInSync, type SimBase, type SimCore } from './sim-core.ts';
 import { dumpState, firstDivergence, hashDump, type Divergence, type StateDump } from './state-dump.ts';
 import { runTick } from './tick.ts';
 import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from './types.ts';
@@ -67,7 +68,7 @@ export class Simulation {
     const seed = checkSeed(opts.seed ?? 1);
     const rules = resolvePlayerRules(def.players, `scenario ${def.name}`);
     const world = await PhysicsWorld.create({ ...(def.world ?? {}), ...(opts.worldOptions ?? {}) });
-    const core = {
+    const base: SimBase = {
       def,
       params,
       seed,
@@ -86,19 +87,21 @@ export class Simulation {
       carriedSensor: [],
       departed: new Map(),
       failure: null,
-    } as unknown as SimCore;
-    core.ctx = makeScenarioContext(core);
+    };
+    // The context works on `base`; once the scenario is built, the same object gains its context and instance.
+    const ctx = makeScenarioContext(base);
+    let instance: ScenarioInstance;
     try {
-      const instance = def.build(core.ctx);
+      instance = def.build(ctx);
       if (!instance || typeof instance.spawnPoint !== 'function') throw new Error('build() must return an instance with spawnPoint(n)');
-      core.instance = instance;
-      assertRegistryInSync(core, 'build');
+      assertRegistryInSync(base, 'build');
     } catch (err) {
       world.destroy();
       throw new Error(`scenario ${def.name}: build failed: ${(err as Error).message}`, { cause: err });
     }
+    const core: SimCore = Object.assign(base, { ctx, instance });
     for (const r of core.registry.all()) core.buildRecords.set(r.id, r);
-    core.carriedSensor = world.sensorHub.drain();
+    core.carriedSensor = worldInternals(world).sensorHub.drain();
     core.phase = 'idle';
     return new Simulation(core);
   }

@@ -1,6 +1,7 @@
 // What the state hash covers, as data: a StateDump of a simulation (bodies' raw float bits in id order, characters,
 // players, PRNG, bullets, scenario state), its 64-bit hash, and the first difference between two dumps.
 import { BODY_STATE_STRIDE, type PhysicsWorld } from '../physics/index.ts';
+import { worldInternals } from '../physics/internal.ts';
 import type { Bullet } from './bullets.ts';
 import type { InputCommand } from './input.ts';
 import type { SimCore } from './sim-core.ts';
@@ -52,7 +53,7 @@ export interface StateDump {
  */
 export function dumpState(core: SimCore, copy = true, bodies?: BodyStates): StateDump {
   const b = bodies ?? core.world.readBodyStates();
-  const rows = core.world.sensorHub.exportOverlaps();
+  const rows = worldInternals(core.world).sensorHub.exportOverlaps();
   const overlaps: number[] = [];
   for (let i = 0; i + 4 < rows.length; i += 5) overlaps.push(rows[i + 2], rows[i + 3], rows[i + 4]);
   return {

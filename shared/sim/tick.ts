@@ -1,12 +1,14 @@
 // One 60 Hz tick, in the documented order (docs/simulation.md): leaves → joins → commands (walk, jump, fire) →
 // characters move → physics step → scenario onTick → bullet expiry and bounds → sensor events → onEvents.
 import { IDENTITY_QUAT, type Vec3Like } from '../physics/index.ts';
+import { worldInternals } from '../physics/internal.ts';
+import { TICK_DT_SECONDS } from '../tick-rate.ts';
 import { makeRecord, playerColor } from './body-registry.ts';
 import { BULLET_SHAPE, bulletOptions, muzzlePosition } from './bullets.ts';
 import { applyCommand, CHARACTER_SHAPE, createCharacter, newPlayer, type Player } from './players.ts';
 import { assertRegistryInSync, createBody, destroyBody, sensorSimEvents, type SimCore } from './sim-core.ts';
 import { validateTickRecord } from './tick-record.ts';
-import { TICK_DT_SECONDS, type PlayerCommand, type PlayerJoin, type SimEvent, type TickInputRecord } from './types.ts';
+import type { PlayerCommand, PlayerJoin, SimEvent, TickInputRecord } from './types.ts';
 
 function checkSpawnPoint(core: SimCore, joinIndex: number): Vec3Like {
   const p = core.instance.spawnPoint(joinIndex);
@@ -105,11 +107,11 @@ export function runTick(core: SimCore, raw: unknown): SimEvent[] {
     const stepped = core.world.stepFixed();
     if (core.instance.onTick) hook(core, 'onTick', () => core.instance.onTick!(core.ctx));
     expireAndBound(core, tick);
-    const raw = core.carriedSensor.concat(stepped, core.world.sensorHub.drain());
+    const raw = core.carriedSensor.concat(stepped, worldInternals(core.world).sensorHub.drain());
     const sensorEvents = sensorSimEvents(core, tick, raw);
     core.tickEvents.push(...sensorEvents);
     if (core.instance.onEvents) hook(core, 'onEvents', () => core.instance.onEvents!(core.ctx, sensorEvents));
-    core.carriedSensor = core.world.sensorHub.drain();
+    core.carriedSensor = worldInternals(core.world).sensorHub.drain();
   } catch (err) {
     core.failure = err as Error;
     core.phase = 'idle';

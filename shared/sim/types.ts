@@ -1,12 +1,8 @@
 // The simulation's data contracts: per-tick input records (exactly what the log stores), events, players, and the
 // character state other layers (hash, snapshots, render) read. Plain data only: no Jolt, no classes.
-import type { Vec3Like } from '../physics/index.ts';
+import type { ShapeSpec } from '../physics-data/shape-spec.ts';
+import type { Vec3Like } from '../physics-data/vectors.ts';
 import type { InputCommand } from './input.ts';
-
-/** Ticks per second of every simulation. */
-export const TICK_RATE_HZ = 60;
-/** Seconds per tick. */
-export const TICK_DT_SECONDS = 1 / TICK_RATE_HZ;
 
 /** A player entering on this tick. Player ids are chosen by the host (server or recorder), unique per session. */
 export interface PlayerJoin {
@@ -65,7 +61,7 @@ export interface CharacterState {
 /** What a client needs to draw a body: its shape, colour and motion kind (static geometry and spawns). */
 export interface BodyDescriptor {
   id: number;
-  shape: import('../physics/index.ts').ShapeSpec;
+  shape: ShapeSpec;
   color: readonly [number, number, number];
   motion: 'static' | 'dynamic' | 'kinematic';
   hidden: boolean;

@@ -1,5 +1,5 @@
 // Test helpers for the CLI: run main() in-process with captured stdout/stderr, and tamper with input logs.
-import { main } from '../../server/cli/main.ts';
+import { main } from '../../cli/main.ts';
 import { readLogBytes } from '../../server/log/log-bytes.ts';
 import { LogEncoder } from '../../server/log/log-encoder.ts';
 import type { TickInputRecord } from '../../shared/sim/types.ts';

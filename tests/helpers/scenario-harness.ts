@@ -8,6 +8,7 @@ import { Button, NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input
 import { Prng } from '../../shared/sim/prng.ts';
 import { resolveParams, type ParamValues, type ScenarioContext, type ScenarioDefinition, type ScenarioInstance, type SpawnOptions } from '../../shared/sim/scenario.ts';
 import type { CharacterState, PlayerCommand, SimEvent } from '../../shared/sim/types.ts';
+import { TICK_DT_SECONDS } from '../../shared/tick-rate.ts';
 
 /** Options of ScenarioHarness.create. */
 export interface HarnessOptions {
@@ -153,7 +154,7 @@ export class ScenarioHarness {
       p.controller.velocity.x = v.x;
       p.controller.velocity.z = v.z;
       if (p.input.buttons & Button.Jump) p.controller.jump(this.def.players?.jumpSpeedMetresPerSecond ?? 5);
-      p.controller.move(1 / 60);
+      p.controller.move(TICK_DT_SECONDS);
     }
     const sensorEvents = this.world.stepFixed();
     this.instance.onTick?.(this.ctx);

@@ -1,13 +1,11 @@
 // In-process server harness for tests: a GameServer on a ManualClock with real Simulations, and protocol-level test
-// clients over memory links that decode every server message and snapshot (acking them) exactly as a client would.
+// clients over its MemoryNetwork that decode every server message and snapshot (acking them) exactly as a client would.
 import '../../server/physics-node.ts';
-import { ManualClock } from '../../server/clock.ts';
 import type { SessionLimits } from '../../server/client-session.ts';
 import { GameServer } from '../../server/game-server.ts';
 import { silentLogger } from '../../server/logger.ts';
-import { createMemoryLink, type MemoryClientEnd } from '../../server/memory-link.ts';
 import { memoryPeerConnection } from '../../server/memory-peer.ts';
-import { MemoryNetwork, type MemoryNetworkOptions } from '../../client/net/index.ts';
+import { MemoryNetwork, type MemoryNetworkOptions, type MemoryTransport } from '../../sdk/index.ts';
 import { createMetrics } from '../../server/metrics.ts';
 import { createRoomFactory, type ScenarioSource } from '../../server/room-factory.ts';
 import type { Room } from '../../server/room.ts';
@@ -21,15 +19,17 @@ import {
   type ServerMessage,
   type WelcomeMessage,
 } from '../../shared/protocol/index.ts';
+import { ManualClock } from '../../shared/clock.ts';
 import type { InputCommand } from '../../shared/sim/input.ts';
 import type { ScenarioDefinition } from '../../shared/sim/scenario.ts';
 import type { SimEvent, TickInputRecord } from '../../shared/sim/types.ts';
+import { TICK_MS } from '../../shared/tick-rate.ts';
+
+/** One tick period in ms (tests import it from here). */
+export { TICK_MS };
 
 /** The URL the harness's MemoryNetwork listens on. */
 export const MEMORY_URL = 'ws://memory.test/';
-
-/** One tick period in ms. */
-export const TICK_MS = 1000 / 60;
 
 /** A scenario source over a fixed list. */
 export function scenarioList(defs: readonly ScenarioDefinition[]): ScenarioSource {
@@ -53,7 +53,7 @@ export interface HarnessOptions {
 
 /** A protocol-level client: records every decoded message; decodes and acks snapshots. */
 export class TestClient {
-  readonly end: MemoryClientEnd;
+  readonly end: MemoryTransport;
   readonly messages: ServerMessage[] = [];
   readonly frames: QuantizedFrame[] = [];
   readonly events: SimEvent[] = [];
@@ -63,10 +63,8 @@ export class TestClient {
   decoder: SnapshotDecoder | null = null;
   autoAck = true;
 
-  constructor(end: MemoryClientEnd) {
-    this.end = end;
-    end.onMessage((data) => this.receive(data));
-    end.onClose((code, reason) => (this.closed = { code, reason }));
+  constructor(net: MemoryNetwork, url: string, label: string) {
+    this.end = net.connect(url, { open: () => {}, message: (data) => this.receive(data), close: (code, reason) => (this.closed = { code, reason }) }, label);
   }
 
   private receive(data: Uint8Array): void {
@@ -125,7 +123,7 @@ export class TestClient {
 export interface Harness {
   clock: ManualClock;
   server: GameServer;
-  /** Opens a link and wraps its client end (no hello sent). */
+  /** Opens a link to the server and wraps its client end (no hello sent); the server sees it on the next clock run. */
   connect(remote?: string): TestClient;
   /** Connects, says hello and advances until the welcome arrives. */
   join(name: string, room?: string | null): Promise<TestClient>;
@@ -134,7 +132,7 @@ export interface Harness {
   /** Advances the clock by n tick periods. */
   ticks(n: number): void;
   room(id?: string): Room;
-  /** A MemoryNetwork on the harness clock whose MEMORY_URL reaches this server (for client/net's NetClient). */
+  /** A MemoryNetwork on the harness clock whose MEMORY_URL reaches this server (for sdk's NetClient). */
   network(opts?: MemoryNetworkOptions): MemoryNetwork;
   /** Every record the room stepped, and its hash after each step. */
   history(id?: string): { records: TickInputRecord[]; hashes: string[] };
@@ -170,13 +168,13 @@ export async function startHarness(opts: HarnessOptions): Promise<Harness> {
   };
   for (const r of server.rooms.all()) watch(r);
   let n = 0;
+  const links = new MemoryNetwork(clock, { latencyMs: opts.latencyMs ?? 0, maxPayloadBytes: opts.maxPayloadBytes });
+  links.listen(MEMORY_URL, (peer) => server.accept(memoryPeerConnection(peer)));
   const h: Harness = {
     clock,
     server,
     connect(remote) {
-      const link = createMemoryLink({ clock, latencyMs: opts.latencyMs ?? 0, remote: remote ?? `test-${++n}`, maxPayloadBytes: opts.maxPayloadBytes });
-      server.accept(link.server);
-      return new TestClient(link.client);
+      return new TestClient(links, MEMORY_URL, remote ?? `test-${++n}`);
     },
     async settle(done, maxTurns = 2000) {
       for (let i = 0; i < maxTurns && !done(); i++) {

@@ -1,7 +1,7 @@
 // Tests for server/memory-peer.ts: the client library's NetClient over its MemoryNetwork (latency, jitter) plays
 // against the in-process server on the manual clock: joining, moving, seeing each other, server byes.
 import { afterEach, describe, expect, it } from 'vitest';
-import { connect, type NetClient } from '../../client/net/index.ts';
+import { connect, type NetClient } from '../../sdk/index.ts';
 import { NEUTRAL_INPUT } from '../../shared/sim/input.ts';
 import { MEMORY_URL, startHarness, type Harness } from './harness.ts';
 import { stripScenario } from './test-scenarios.ts';

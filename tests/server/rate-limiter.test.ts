@@ -1,7 +1,7 @@
 // Tests for server/rate-limiter.ts: burst, sustained rate, refill on the injected clock.
 import { describe, expect, it } from 'vitest';
-import { ManualClock } from '../../server/clock.ts';
 import { RateLimiter } from '../../server/rate-limiter.ts';
+import { ManualClock } from '../../shared/clock.ts';
 
 describe('RateLimiter', () => {
   it('allows a burst, then refuses until tokens refill', () => {

@@ -1,13 +1,14 @@
 // Tests for server/room.ts with a recording stand-in simulation: the exact records stepped (joins, leaves, inputs
 // applied or repeated), event and frame delivery, limits, pausing when empty, failure isolation.
 import { describe, expect, it } from 'vitest';
-import { ManualClock } from '../../server/clock.ts';
 import { OfferResult } from '../../server/input-buffer.ts';
 import { silentLogger } from '../../server/logger.ts';
 import { createMetrics, type ServerMetrics } from '../../server/metrics.ts';
 import { Room, RoomError, type BodyStates, type RoomMember, type RoomOptions, type RoomSimulation, type WorldFrame } from '../../server/room.ts';
+import { ManualClock } from '../../shared/clock.ts';
 import { NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input.ts';
 import type { CharacterState, SimEvent, TickInputRecord } from '../../shared/sim/types.ts';
+import { TICK_MS } from '../../shared/tick-rate.ts';
 
 // A stand-in simulation: remembers every record, reports a join/leave event per player, one body per player.
 class FakeSim implements RoomSimulation {
@@ -76,7 +77,6 @@ class Member implements RoomMember {
 }
 
 const cmd = (moveX: number): InputCommand => ({ ...NEUTRAL_INPUT, moveX });
-const TICK_MS = 1000 / 60;
 
 function makeRoom(over: Partial<RoomOptions> = {}): { room: Room; sim: FakeSim; clock: ManualClock; metrics: ServerMetrics } {
   const sim = new FakeSim();

@@ -4,7 +4,7 @@ import { mkdtempSync, readdirSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, afterEach, describe, expect, it } from 'vitest';
-import { replayLog } from '../../server/cli/replay-session.ts';
+import { replayLog } from '../../cli/replay-session.ts';
 import { silentLogger } from '../../server/logger.ts';
 import { createMetrics } from '../../server/metrics.ts';
 import { startServer, type RunningServer } from '../../server/start-server.ts';

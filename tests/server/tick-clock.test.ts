@@ -1,7 +1,7 @@
 // Tests for server/tick-clock.ts: fixed-rate ticks on absolute targets, bounded catch-up, slowdown reports.
 import { describe, expect, it } from 'vitest';
-import { ManualClock } from '../../server/clock.ts';
 import { TickClock, type SlowdownReport } from '../../server/tick-clock.ts';
+import { ManualClock } from '../../shared/clock.ts';
 
 describe('TickClock', () => {
   it('runs tick 0 at start and one tick per 1/60 s after', () => {

@@ -4,7 +4,7 @@ import { describe, expect, it } from 'vitest';
 import { meshBounds, type MeshData } from '../../../client/render/mesh-data.ts';
 import { unitBoxMesh, unitCapsuleMesh, unitCylinderMesh, unitSphereMesh } from '../../../client/render/primitive-meshes.ts';
 import { MAX_RENDER_HEIGHTFIELD_SAMPLES, hashNumbers, shapeMeshRef } from '../../../client/render/shape-mesh.ts';
-import type { ShapeSpec } from '../../../shared/physics/shapes.ts';
+import type { ShapeSpec } from '../../../shared/physics-data/shape-spec.ts';
 
 /** For a convex mesh around the origin: every triangle faces away from the origin, and vertex normals agree. */
 function expectOutward(mesh: MeshData): void {

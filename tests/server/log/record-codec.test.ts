@@ -1,6 +1,6 @@
 // Tests for the input-log payload codecs: exact round trips, compactness, and clear errors on bad records.
 import { describe, expect, it } from 'vitest';
-import { PayloadError } from '../../../server/log/byte-io.ts';
+import { PayloadError } from '../../../shared/byte-io.ts';
 import { decodeCheckpoint, decodeEnd, decodeHash, decodeHeader, decodeTick, encodeCheckpoint, encodeEnd, encodeHash, encodeHeader, encodeTick } from '../../../server/log/record-codec.ts';
 import { emptyTickInput } from '../../../shared/sim/types.ts';
 import { sampleHeader, sampleTick } from '../../helpers/input-log.ts';

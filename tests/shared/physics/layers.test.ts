@@ -2,6 +2,7 @@
 // wall, and query filters built from a layer that see exactly what that layer collides with.
 import { describe, expect, it } from 'vitest';
 import { CollisionLayer, layersInteract, makeBroadPhaseFilter, makeObjectLayerFilter } from '../../../shared/physics/index.ts';
+import { worldInternals } from '../../../shared/physics/internal.ts';
 import { assertGroupBits, packObjectLayer } from '../../../shared/physics/layers.ts';
 import { makeWorld, run } from '../../helpers/physics.ts';
 
@@ -73,7 +74,7 @@ describe('layers', () => {
       const bodyFilter = new J.BodyFilter();
       const shapeFilter = new J.ShapeFilter();
       w.system.GetNarrowPhaseQuery().CastRay(ray, settings, collector, bp, obj, bodyFilter, shapeFilter);
-      const hit = collector.HadHit() ? w.bodyByJoltId(collector.mHit.mBodyID.GetIndexAndSequenceNumber())?.id : undefined;
+      const hit = collector.HadHit() ? worldInternals(w).bodyByJoltId(collector.mHit.mBodyID.GetIndexAndSequenceNumber())?.id : undefined;
       for (const o of [bp, obj, origin, dir, ray, settings, collector, bodyFilter, shapeFilter]) J.destroy(o);
       return hit;
     };

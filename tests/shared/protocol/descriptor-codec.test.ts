@@ -3,7 +3,7 @@
 import { describe, expect, it } from 'vitest';
 import { packValue, unpackFrame } from '../../../shared/protocol/codec.ts';
 import { packDescriptors, parseShape, unpackDescriptors } from '../../../shared/protocol/descriptor-codec.ts';
-import type { ShapeSpec } from '../../../shared/physics/shapes.ts';
+import type { ShapeSpec } from '../../../shared/physics-data/shape-spec.ts';
 import type { BodyDescriptor } from '../../../shared/sim/types.ts';
 
 function body(id: number, shape: ShapeSpec, extra: Partial<BodyDescriptor> = {}): BodyDescriptor {

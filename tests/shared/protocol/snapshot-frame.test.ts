@@ -1,7 +1,7 @@
 // Tests of QuantizedFrame building and its float view: which bodies a snapshot carries, at-rest flags, character
 // ordering, input checks, and dequantized values close to the originals.
 import { describe, expect, it } from 'vitest';
-import { BodyFlag } from '../../../shared/physics/body-handle.ts';
+import { BodyFlag } from '../../../shared/physics-data/body-state.ts';
 import { createSnapshotFormat } from '../../../shared/protocol/quantization.ts';
 import { BODY_Q_STRIDE, dequantizeFrame, framesEqual, quantizeFrame } from '../../../shared/protocol/snapshot-frame.ts';
 import type { CharacterState } from '../../../shared/sim/types.ts';

@@ -1,6 +1,6 @@
 // Test helper: a seeded synthetic world (no Jolt) that moves, rotates, sleeps, spawns and removes bodies and
 // characters every tick, and renders itself as the simulation's bulk read for the snapshot codec.
-import { BodyFlag } from '../../../shared/physics/body-handle.ts';
+import { BodyFlag } from '../../../shared/physics-data/body-state.ts';
 import type { BodyStatesRead } from '../../../shared/protocol/snapshot-frame.ts';
 import { Prng } from '../../../shared/sim/prng.ts';
 import type { BodyDescriptor, CharacterState } from '../../../shared/sim/types.ts';

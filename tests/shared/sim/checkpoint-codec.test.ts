@@ -1,5 +1,6 @@
 // Tests of the checkpoint byte form: restoring into a fresh simulation (another "process") and into a diverged one
 // continues with identical hashes; corrupt, truncated, foreign or future-version bytes are refused and change nothing.
+import { createHash } from 'node:crypto';
 import { describe, expect, it } from 'vitest';
 import { CHECKPOINT_FORMAT_VERSION } from '../../../shared/sim/checkpoint-codec.ts';
 import { Button } from '../../../shared/sim/input.ts';
@@ -36,6 +37,14 @@ describe('checkpoint-codec', () => {
     runHashes(sim, shots);
     sim.restoreCheckpointBytes(bytes);
     expect(runHashes(sim, RECORDS.slice(40, 80))).toEqual(after);
+    sim.destroy();
+  });
+
+  it('writes the same bytes as ever for a known session (format pin: length and SHA-256)', async () => {
+    const sim = await makeSim(testArenaPvp, { boxes: 3 }, 'pin');
+    runHashes(sim, RECORDS.slice(0, 70));
+    const bytes = sim.saveCheckpointBytes();
+    expect({ sizeBytes: bytes.length, sha256: createHash('sha256').update(bytes).digest('hex') }).toEqual({ sizeBytes: 5056, sha256: 'dce2fbb5443cf992298096033aca6dfa39a1b3e45ff4a518f6319648724b6ccd' });
     sim.destroy();
   });
 

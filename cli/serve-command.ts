@@ -1,0 +1,65 @@
+// `serve [--port 8080] [--host 127.0.0.1] [--scenario NAME] [--param k=v] [--snapshot-rate 30] [--record DIR]
+// [--max-clients N]`: runs the networked server (HTTP + WebSocket on one port) until SIGINT/SIGTERM.
+import { DEFAULT_SCENARIO } from '../scenarios/index.ts';
+import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
+import { runServe } from './serve.ts';
+import type { ParsedArgs } from './args.ts';
+import { UsageError, type CliIo, type CommandSpec } from './command.ts';
+import { checkParams, parseSeed, scenarioNamed } from './scenario-setup.ts';
+
+const LOG_LEVELS = ['trace', 'debug', 'info', 'warn', 'error', 'fatal', 'silent'];
+
+async function run(args: ParsedArgs, io: CliIo): Promise<number> {
+  const scenario = args.string('scenario') ?? DEFAULT_SCENARIO;
+  const def = scenarioNamed(scenario);
+  const params = args.pairs('param');
+  checkParams(def, params);
+  const record = args.string('record');
+  if (record === '') throw new UsageError('--record must name a directory');
+  const logLevel = args.string('log-level');
+  if (logLevel !== undefined && !LOG_LEVELS.includes(logLevel)) throw new UsageError(`--log-level must be one of ${LOG_LEVELS.join(', ')}, got "${logLevel}"`);
+  const host = args.string('host') ?? '127.0.0.1';
+  if (host === '') throw new UsageError('--host must not be empty');
+  return runServe(
+    {
+      port: args.number('port', 8080),
+      host,
+      scenario,
+      params,
+      seed: parseSeed(args.string('seed')),
+      snapshotRateHz: args.number('snapshot-rate', 30),
+      recordDir: record ?? null,
+      maxClients: args.number('max-clients', 32),
+      maxRooms: args.number('max-rooms'),
+      clientDir: args.string('client-dir'),
+      logLevel,
+    },
+    io,
+  );
+}
+
+/** The serve command. */
+export const serveCommand: CommandSpec = {
+  name: 'serve',
+  summary: 'Run the multiplayer server (HTTP + WebSocket on one port)',
+  details:
+    'Serves the browser client at /, WebSocket play on the same port, /healthz, /metrics (Prometheus) and\n' +
+    '/api/rooms. The default room runs --scenario; a client may open another room by naming a scenario as its room.\n' +
+    'With --record DIR every room writes its input log there (replay it with `replay FILE`). Logs are JSON lines on\n' +
+    'stderr. SIGINT/SIGTERM: clients are told why, recordings are closed, then the process exits.',
+  positionals: [],
+  flags: [
+    { name: 'port', kind: 'int', valueName: 'PORT', description: 'TCP port (0: any free port); default 8080', min: 0, max: 65535 },
+    { name: 'host', kind: 'string', valueName: 'HOST', description: 'interface to bind; default 127.0.0.1' },
+    { name: 'scenario', kind: 'string', valueName: 'NAME', description: `scenario of the default room; default ${DEFAULT_SCENARIO}` },
+    { name: 'param', kind: 'pair', valueName: 'k=v', description: 'scenario parameter (repeatable)' },
+    { name: 'seed', kind: 'string', valueName: 'SEED', description: 'simulation seed of every room; default 1' },
+    { name: 'snapshot-rate', kind: 'int', valueName: 'HZ', description: `snapshots per second per client (1-${TICK_RATE_HZ}); default 30`, min: 1, max: TICK_RATE_HZ },
+    { name: 'record', kind: 'string', valueName: 'DIR', description: "write every room's input log into DIR" },
+    { name: 'max-clients', kind: 'int', valueName: 'N', description: 'most clients per room; default 32', min: 1, max: 1000 },
+    { name: 'max-rooms', kind: 'int', valueName: 'N', description: 'most rooms at once (each is a Jolt world in the 128 MB heap); default 6', min: 1, max: 32 },
+    { name: 'client-dir', kind: 'string', valueName: 'DIR', description: 'built browser client to serve; default dist/client' },
+    { name: 'log-level', kind: 'string', valueName: 'LEVEL', description: 'log level (trace, debug, info, warn, error, silent); default info' },
+  ],
+  run,
+};

@@ -1,0 +1,42 @@
+// The `serve` command's body: starts the server with the command-line options, prints where it listens, logs JSON
+// lines to stderr, and on SIGINT/SIGTERM shuts down cleanly (byes, recordings ended, logs flushed) and returns.
+import type { CliIo } from './command.ts';
+import { createLogger } from '../server/logger.ts';
+import { installShutdown, type SignalSource } from '../server/shutdown.ts';
+import { startServer, type StartServerOptions } from '../server/start-server.ts';
+
+/** Options of runServe: the server's plus logging and signal hooks. */
+export interface ServeOptions extends Omit<StartServerOptions, 'logger'> {
+  /** pino level for the JSON log on stderr. Default info. */
+  logLevel?: string;
+  /** Where signals come from (default the process). */
+  signals?: SignalSource;
+}
+
+/** Runs until a signal; resolves to the exit code (0 after a clean shutdown, 1 when it failed or hung). */
+export async function runServe(opts: ServeOptions, io: CliIo): Promise<number> {
+  const logger = createLogger({ level: opts.logLevel ?? process.env.TAOS_LOG_LEVEL ?? 'info', fd: 2 });
+  let server;
+  try {
+    server = await startServer({ ...opts, logger });
+  } catch (error) {
+    io.stderr(`taos-physics serve: ${error instanceof Error ? error.message : String(error)}\n`);
+    logger.flush();
+    return 1;
+  }
+  const room = server.game.rooms.get('default');
+  const what = room ? `${room.scenarioName}` : 'no default room';
+  io.stdout(`taos-physics serving ${what} at ${server.url} (WebSocket ${server.wsUrl}); Ctrl+C stops\n`);
+  return new Promise<number>((resolve) => {
+    const { uninstall } = installShutdown(server, {
+      logger,
+      source: opts.signals,
+      exit: (code) => {
+        uninstall();
+        resolve(code);
+        // Nothing should hold the event loop after a clean shutdown; if something does, do not hang forever.
+        setTimeout(() => process.exit(code), 3000).unref();
+      },
+    });
+  });
+}

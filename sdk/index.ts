@@ -1,0 +1,13 @@
+// Public surface of the client network library (browser and Node 24): connect(), the interpolation buffer, the
+// transports and the pieces tests and tools reuse.
+export type { Clock, TimerHandle } from '../shared/clock.ts';
+export { connect, NetClient, type ClosedInfo, type NetClientEvents, type NetClientOptions, type NetClientState, type NetClientStats } from './client.ts';
+export { RealClock } from './clock.ts';
+export { ClockSync, type ClockSyncOptions, type PongSample } from './clock-sync.ts';
+export { InputLead, InputSender, type InputLeadOptions, type InputSenderOptions } from './input-sender.ts';
+export { InterpolationBuffer, slerpInto, type InterpolatedFrame, type InterpolationMode, type InterpolationOptions, type InterpolationStats, type PushOutcome } from './interpolation.ts';
+export type { LinkClosedInfo, SnapshotInfo } from './link-session.ts';
+export { MemoryNetwork, type MemoryNetworkOptions, type MemoryPeer, type MemoryTransport } from './memory-transport.ts';
+export { backoffDelayMs, isRetryable, reconnectPolicy, type ReconnectOptions, type ReconnectPolicy } from './reconnect-policy.ts';
+export type { Transport, TransportFactory, TransportHandlers } from './transport.ts';
+export { ABNORMAL_CLOSE, webSocketTransport } from './websocket-transport.ts';

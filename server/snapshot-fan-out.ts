@@ -1,0 +1,94 @@
+// A room's snapshot and event fan-out: the work every member shares, done once per tick. One snapshot format per
+// room, each world frame quantized once (bodies whose pose has not changed keep the previous frame's integers), its
+// bit-packing shared by every member's encoder, and each framed message built once for all members that get it.
+import {
+  createSnapshotFormat,
+  encodeServerMessage,
+  quantizeFrame,
+  SharedFrameWork,
+  type EncodedSnapshot,
+  type QuantizedFrame,
+  type SnapshotEncoder,
+  type SnapshotFormat,
+} from '../shared/protocol/index.ts';
+import type { Vec3Like } from '../shared/physics/index.ts';
+import type { BodyDescriptor, SimEvent } from '../shared/sim/types.ts';
+import type { WorldFrame } from './room.ts';
+
+/** What the fan-out needs to know of its room. */
+export interface FanOutSource {
+  /** Where the room's bodies live: the snapshot position grid. */
+  readonly bounds: { min: Vec3Like; max: Vec3Like };
+  /** Whether a body is part of the scene's built static geometry (sent in the welcome, never in snapshots). */
+  isSceneStatic(bodyId: number): boolean;
+  /** A live body's descriptor (spawned bodies travel with the first snapshot that carries them). */
+  describe(bodyId: number): BodyDescriptor | undefined;
+}
+
+/** The work one world frame shares between members. */
+interface FrameWork {
+  readonly frame: WorldFrame;
+  readonly quantized: QuantizedFrame;
+  readonly shared: SharedFrameWork;
+  /** Framed snapshot messages by baseline tick and the descriptors they carry. */
+  readonly messages: Map<string, Uint8Array>;
+}
+
+/** One member's snapshot of a frame: the framed message and what the encoder made of it. */
+export interface MemberSnapshot {
+  message: Uint8Array;
+  encoded: EncodedSnapshot;
+}
+
+/** A room's shared per-tick snapshot and event work; the room owns one. */
+export class SnapshotFanOut {
+  private readonly source: FanOutSource;
+  private formatCache: SnapshotFormat | null = null;
+  private work: FrameWork | null = null;
+  /** The latest quantized frame and the body copies it came from (the next frame's starting point). */
+  private last: { bodies: WorldFrame['bodies']; frame: QuantizedFrame } | null = null;
+  private events: { list: readonly SimEvent[]; message: Uint8Array } | null = null;
+
+  constructor(source: FanOutSource) {
+    this.source = source;
+  }
+
+  /** The room's snapshot format (every member's encoder uses it); made on first use. */
+  get format(): SnapshotFormat {
+    this.formatCache ??= createSnapshotFormat(this.source.bounds);
+    return this.formatCache;
+  }
+
+  /** The framed events message of a tick: the room hands every member the same list, framed once. */
+  eventsMessage(events: readonly SimEvent[]): Uint8Array {
+    if (this.events?.list !== events) this.events = { list: events, message: encodeServerMessage({ type: 'events', events: [...events] }) };
+    return this.events.message;
+  }
+
+  /**
+   * A member's snapshot of `frame` from its encoder. Members that share a baseline and the spawned bodies they still
+   * lack get the very same message (a descriptor is the same object for every member within a tick).
+   */
+  snapshotFor(encoder: SnapshotEncoder, frame: WorldFrame): MemberSnapshot {
+    const work = this.frameWork(frame);
+    const encoded = encoder.encode(work.quantized, (id) => this.source.describe(id), work.shared);
+    let key = `${encoded.baselineTick ?? -1}`;
+    for (const d of encoded.descriptors) key += `,${d.id}`;
+    let message = work.messages.get(key);
+    if (!message) {
+      message = encodeServerMessage({ type: 'snapshot', bytes: encoded.bytes, descriptors: encoded.descriptors });
+      work.messages.set(key, message);
+    }
+    return { message, encoded };
+  }
+
+  private frameWork(frame: WorldFrame): FrameWork {
+    if (this.work?.frame === frame) return this.work;
+    const last = this.last;
+    const previous = last !== null && last.frame.tick < frame.tick ? { read: last.bodies, frame: last.frame } : undefined;
+    const quantized = quantizeFrame(this.format, frame.tick, frame.bodies, frame.characters, { includeStatic: (id) => !this.source.isSceneStatic(id), previous });
+    this.last = { bodies: frame.bodies, frame: quantized };
+    this.work = { frame, quantized, shared: new SharedFrameWork(), messages: new Map() };
+    return this.work;
+  }
+}

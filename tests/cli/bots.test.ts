@@ -1,0 +1,57 @@
+// Tests for cli/bots.ts: seeded scripted bots join through the client library (MemoryNetwork, manual clock),
+// drive varied commands into the room, stop on time and report their traffic.
+import { afterEach, describe, expect, it } from 'vitest';
+import { startBots } from '../../cli/bots.ts';
+import { MEMORY_URL, startHarness, type Harness } from '../server/harness.ts';
+import { stripScenario } from '../server/test-scenarios.ts';
+
+let h: Harness | null = null;
+afterEach(async () => {
+  await h?.close();
+  h = null;
+});
+
+describe('bots', () => {
+  it('joins N scripted bots that walk, turn, jump and fire, then stops and reports', async () => {
+    h = await startHarness({ scenarios: [stripScenario] });
+    const net = h.network({ latencyMs: 20 });
+    const run = startBots({ url: MEMORY_URL, count: 3, seconds: 4, clock: h.clock, transport: net.transport, seed: 7 });
+    let report: Awaited<typeof run.done> | null = null;
+    void run.done.then((r) => (report = r));
+    await h.settle(() => h!.room().clientCount === 3);
+    expect(h.room().clientCount).toBe(3);
+    await h.settle(() => report !== null, 10_000);
+    const r = report!;
+    expect(r.bots.map((b) => b.connected)).toEqual([true, true, true]);
+    expect(r.bots.every((b) => b.snapshots > 50 && b.bytesIn > 0 && b.bytesOut > 0)).toBe(true);
+    expect(r.bots.every((b) => b.closedReason === 'client-closed')).toBe(true);
+    expect(r.kbpsInPerBot).toBeGreaterThan(0);
+    // The room applied their scripts: moving, turning and button presses (jump/fire) from every bot.
+    const commands = h.history().records.flatMap((rec) => rec.commands);
+    for (const id of [1, 2, 3]) {
+      const mine = commands.filter((c) => c.playerId === id).map((c) => c.input);
+      expect(new Set(mine.map((c) => c.yaw)).size).toBeGreaterThan(10);
+      expect(mine.some((c) => c.moveZ !== 0)).toBe(true);
+      expect(mine.some((c) => c.buttons !== 0)).toBe(true);
+    }
+    await h.settle(() => h!.room().clientCount === 0);
+    expect(h.room().clientCount).toBe(0);
+  });
+
+  it('reports bots that the server refuses', async () => {
+    h = await startHarness({ scenarios: [stripScenario] });
+    const net = h.network();
+    const run = startBots({ url: MEMORY_URL, count: 2, room: 'no-such-room', seconds: 1, clock: h.clock, transport: net.transport });
+    let report: Awaited<typeof run.done> | null = null;
+    void run.done.then((r) => (report = r));
+    await h.settle(() => report !== null, 5000);
+    expect(report!.bots.map((b) => [b.connected, b.closedReason])).toEqual([
+      [false, 'room-not-found'],
+      [false, 'room-not-found'],
+    ]);
+  });
+
+  it('rejects a bad bot count', () => {
+    expect(() => startBots({ url: MEMORY_URL, count: 0 })).toThrow(/count/);
+  });
+});
