@@ -1,6 +1,7 @@
 // One client connection from hello to bye: validates every incoming frame, enforces per-client rate and error limits,
-// joins a room, feeds inputs/acks/pings to it, and sends welcome, events (reliable) and snapshots (skipped when the
-// socket is backed up). Nothing a client sends reaches the room unvalidated or under another player's id.
+// joins a room (or resumes a held player), feeds inputs/acks/pings to it, and sends welcome, events (reliable) and
+// snapshots (skipped when the socket is backed up). Nothing a client sends reaches the room unvalidated or under
+// another player's id.
 import {
   ByeReason,
   createSnapshotFormat,
@@ -14,11 +15,14 @@ import {
   SnapshotEncoder,
   snapshotFormatSpec,
   type ClientMessage,
+  type HelloMessage,
   type QuantizedFrame,
   type ServerMessage,
   type SnapshotFormat,
 } from '../shared/protocol/index.ts';
 import type { BodyDescriptor, SimEvent } from '../shared/sim/types.ts';
+import { admitSeat, type SessionAccess } from './access/admission.ts';
+import type { ResumeHolder } from './access/resume-tokens.ts';
 import type { Clock, TimerHandle } from './clock.ts';
 import { CloseCode, type ServerConnection } from './connection.ts';
 import { OfferResult } from './input-buffer.ts';
@@ -73,6 +77,8 @@ export interface SessionContext {
   logger: Logger;
   rooms: RoomManager;
   limits: SessionLimits;
+  /** Seat and resume rules. */
+  access: SessionAccess;
   /** Called once when the session ends. */
   onEnd(session: ClientSession): void;
 }
@@ -102,8 +108,11 @@ function formatFor(room: Room): SnapshotFormat {
 
 let nextSessionId = 1;
 
+/** How a joined player's session ended: leave the room, or be held for a reconnect (the link dropped). */
+type Ending = 'leave' | 'hold';
+
 /** One connected client. */
-export class ClientSession implements RoomMember {
+export class ClientSession implements RoomMember, ResumeHolder {
   readonly id = nextSessionId++;
   readonly conn: ServerConnection;
   readonly stats: SessionStats = { messagesReceived: 0, badMessages: 0, errorsSent: 0, snapshotsSent: 0, snapshotsSkipped: 0, snapshotBytes: 0, bytesSent: 0, inputsLate: 0, inputsTooFar: 0 };
@@ -116,6 +125,8 @@ export class ClientSession implements RoomMember {
   private room: Room | null = null;
   private playerId = 0;
   private encoder: SnapshotEncoder | null = null;
+  /** The seat this session's hello used, until the join it was for succeeds (given back if it fails). */
+  private seatId: string | null = null;
 
   constructor(conn: ServerConnection, ctx: SessionContext) {
     this.conn = conn;
@@ -166,6 +177,11 @@ export class ClientSession implements RoomMember {
     }
     const decoded = decodeClientMessage(data, this.ctx.limits.maxMessageBytes);
     if (!decoded.ok) {
+      if (decoded.code === ErrorCode.VersionMismatch && this.state === 'hello') {
+        this.sendError(decoded.code, decoded.error);
+        this.end(ByeReason.VersionMismatch, decoded.error, CloseCode.PolicyViolation);
+        return;
+      }
       this.refuse(decoded.code, decoded.error);
       return;
     }
@@ -182,7 +198,7 @@ export class ClientSession implements RoomMember {
   private handle(msg: ClientMessage): void {
     switch (msg.type) {
       case 'hello':
-        this.onHello(msg.version, msg.name, msg.room);
+        this.onHello(msg);
         return;
       case 'input': {
         if (this.state !== 'joined' || !this.room) {
@@ -224,26 +240,44 @@ export class ClientSession implements RoomMember {
     }
   }
 
-  private onHello(version: number, name: string, roomId: string | null): void {
+  private onHello(hello: HelloMessage): void {
     if (this.state !== 'hello') {
       this.refuse(ErrorCode.UnexpectedMessage, 'hello was already received');
-      return;
-    }
-    if (version !== PROTOCOL_VERSION) {
-      this.end(ByeReason.VersionMismatch, `server speaks protocol ${PROTOCOL_VERSION}, client sent ${version}`, CloseCode.PolicyViolation);
       return;
     }
     this.state = 'joining';
     if (this.helloTimer) this.ctx.clock.clearTimer(this.helloTimer);
     this.helloTimer = null;
-    this.ctx.rooms.resolve(roomId === null ? {} : { roomId }).then(
-      (room) => this.joinRoom(room, name),
+    if (hello.resumeToken !== undefined) {
+      const resume = this.ctx.access.resume;
+      const claim = resume ? resume.claim(hello.resumeToken, hello.room) : ({ ok: false, reason: 'this server does not resume players' } as const);
+      if (claim.ok) {
+        this.resumePlayer(claim.room, claim.playerId);
+        return;
+      }
+      // Not fatal: the client is told why and joins as a new player (under the same seat rules as anyone).
+      this.ctx.metrics.accessRefused.inc({ reason: ErrorCode.ResumeRefused });
+      this.sendError(ErrorCode.ResumeRefused, `cannot resume: ${claim.reason}; joining as a new player`);
+    }
+    const seat = admitSeat(this.ctx.access, hello.seatToken, hello.room);
+    if (!seat.ok) {
+      this.ctx.metrics.accessRefused.inc({ reason: seat.code });
+      this.sendError(seat.code, seat.message);
+      this.end(ByeReason.SeatRefused, seat.message, CloseCode.PolicyViolation);
+      return;
+    }
+    this.seatId = seat.seatId;
+    this.ctx.rooms.resolve(seat.roomId === null ? {} : { roomId: seat.roomId }).then(
+      (room) => this.joinRoom(room, hello.name),
       (error: unknown) => this.joinFailed(error),
     );
   }
 
   private joinRoom(room: Room, name: string): void {
-    if (this.state !== 'joining') return; // the client left while the room was being created
+    if (this.state !== 'joining') {
+      this.giveSeatBack(); // the client left while the room was being created
+      return;
+    }
     let joined;
     try {
       joined = room.join(this, name);
@@ -251,17 +285,35 @@ export class ClientSession implements RoomMember {
       this.joinFailed(error);
       return;
     }
+    this.seatId = null;
+    this.enterRoom(room, joined.playerId, false);
+    this.ctx.logger.info({ session: this.id, remote: this.conn.remote, room: room.id, playerId: joined.playerId, name }, 'player joined');
+  }
+
+  /** Takes over a player claimed with its resume token: same id and character, nothing in the input record. */
+  private resumePlayer(room: Room, playerId: number): void {
+    if (room.reattach(playerId, this) === null) {
+      this.joinFailed(new RoomError(ErrorCode.RoomNotFound, `player ${playerId} is no longer in room ${room.id}`));
+      return;
+    }
+    this.enterRoom(room, playerId, true);
+    this.ctx.metrics.resumes.inc();
+    this.ctx.logger.info({ session: this.id, remote: this.conn.remote, room: room.id, playerId }, 'player resumed');
+  }
+
+  private enterRoom(room: Room, playerId: number, resumed: boolean): void {
     this.room = room;
-    this.playerId = joined.playerId;
+    this.playerId = playerId;
     this.state = 'joined';
     const format = formatFor(room);
     this.encoder = new SnapshotEncoder(format);
     const dynamicBodies = this.liveDynamicDescriptors(room);
     this.encoder.markDescriptorsKnown(dynamicBodies.map((d) => d.id));
+    const resume = this.ctx.access.resume;
     this.send({
       type: 'welcome',
       protocolVersion: PROTOCOL_VERSION,
-      playerId: joined.playerId,
+      playerId,
       roomId: room.id,
       tick: room.sim.tick,
       tickRateHz: 60,
@@ -270,8 +322,15 @@ export class ClientSession implements RoomMember {
       snapshotFormat: snapshotFormatSpec(format),
       staticBodies: room.staticDescriptors(),
       dynamicBodies,
+      resumeToken: resume ? resume.issue(room, playerId, this) : null,
+      resumeGraceMs: resume ? resume.graceMs : 0,
+      resumed,
     });
-    this.ctx.logger.info({ session: this.id, remote: this.conn.remote, room: room.id, playerId: joined.playerId, name }, 'player joined');
+  }
+
+  private giveSeatBack(): void {
+    if (this.seatId !== null) this.ctx.access.seats?.release(this.seatId);
+    this.seatId = null;
   }
 
   /** Every live body snapshots will carry: non-static ones and statics spawned after the scene was built. */
@@ -287,6 +346,7 @@ export class ClientSession implements RoomMember {
   }
 
   private joinFailed(error: unknown): void {
+    this.giveSeatBack();
     if (this.state === 'closed') return;
     const code = error instanceof RoomError ? error.code : ErrorCode.Internal;
     const message = error instanceof Error ? error.message : String(error);
@@ -385,6 +445,7 @@ export class ClientSession implements RoomMember {
 
   /** The room dropped this client after a failed delivery (RoomMember). */
   removed(reason: string): void {
+    if (this.room) this.ctx.access.resume?.release(this.room, this.playerId, 'the server removed the player');
     this.room = null;
     this.end(ByeReason.Kicked, reason, CloseCode.InternalError);
   }
@@ -393,6 +454,13 @@ export class ClientSession implements RoomMember {
   roomClosed(reason: string): void {
     this.room = null;
     this.end(ByeReason.RoomClosed, reason, CloseCode.GoingAway);
+  }
+
+  /** Another connection resumed this player (ResumeHolder): end this link without leaving the room. */
+  replaced(): void {
+    if (this.state === 'closed') return;
+    this.room = null;
+    this.end(ByeReason.Replaced, 'another connection resumed this player', CloseCode.Normal);
   }
 
   /** Reliable messages may not be dropped; a client this far behind is disconnected instead of queued for. */
@@ -411,7 +479,8 @@ export class ClientSession implements RoomMember {
       this.ctx.metrics.disconnects.inc({ reason });
       this.ctx.logger.info({ session: this.id, remote: this.conn.remote, reason, message }, 'disconnecting client');
     }
-    this.finish();
+    // A link that timed out (or fell too far behind) may come back: its player is held like after a drop.
+    this.finish(reason === ByeReason.Timeout ? 'hold' : 'leave');
     this.conn.close(code, `${reason}: ${message}`);
   }
 
@@ -423,18 +492,26 @@ export class ClientSession implements RoomMember {
       this.ctx.metrics.disconnects.inc({ reason: ErrorCode.Oversize });
     }
     this.ctx.logger.debug({ session: this.id, code, reason }, 'connection closed by peer');
-    this.finish();
+    // Closed without a bye: a dropped link (a client leaving on purpose says bye first), held for a reconnect;
+    // unless the transport closed it for breaking the protocol (an oversize or malformed frame).
+    this.finish(code === CloseCode.MessageTooBig || code === CloseCode.ProtocolError ? 'leave' : 'hold');
   }
 
-  private finish(): void {
+  private finish(ending: Ending): void {
     if (this.state === 'closed') return;
     const wasJoined = this.state === 'joined';
     this.state = 'closed';
     if (this.helloTimer) this.ctx.clock.clearTimer(this.helloTimer);
     this.helloTimer = null;
     if (wasJoined && this.room) {
-      this.ctx.logger.info({ session: this.id, room: this.room.id, playerId: this.playerId }, 'player left');
-      this.room.leave(this.playerId);
+      const resume = this.ctx.access.resume;
+      if (ending === 'hold' && resume !== null && resume.hold(this.room, this.playerId)) {
+        this.ctx.logger.info({ session: this.id, room: this.room.id, playerId: this.playerId, graceMs: resume.graceMs }, 'player link dropped: held for a reconnect');
+      } else {
+        this.ctx.logger.info({ session: this.id, room: this.room.id, playerId: this.playerId }, 'player left');
+        this.room.leave(this.playerId);
+        resume?.release(this.room, this.playerId);
+      }
     }
     this.room = null;
     this.ctx.metrics.clients.dec();

@@ -1,6 +1,9 @@
 // The transport-agnostic server core: rooms, client sessions, metrics and logs on one clock. It accepts
 // ServerConnections from any transport (the ws gateway, or in-memory links in tests) and shuts everything down cleanly.
 import { ByeReason, encodeServerMessage } from '../shared/protocol/index.ts';
+import type { SessionAccess } from './access/admission.ts';
+import { DEFAULT_RESUME_GRACE_MS, ResumeTokens } from './access/resume-tokens.ts';
+import type { SeatTokens } from './access/seat-tokens.ts';
 import { SystemClock, type Clock } from './clock.ts';
 import { ClientSession, DEFAULT_SESSION_LIMITS, type SessionLimits } from './client-session.ts';
 import { CloseCode, type ServerConnection } from './connection.ts';
@@ -31,6 +34,12 @@ export interface GameServerOptions {
   maxInputLeadTicks?: number;
   pauseWhenEmpty?: boolean;
   limits?: Partial<SessionLimits>;
+  /** How long a player whose link dropped is held for a reconnect with its resume token (ms). Default 30 000; 0: off. */
+  resumeGraceMs?: number;
+  /** Seat tokens this server issues and accepts (POST /api/rooms/:id/seats). Default none. */
+  seats?: SeatTokens | null;
+  /** Refuse hellos without a valid seat token. Needs `seats`. Default false. */
+  requireSeat?: boolean;
 }
 
 /** The server core. */
@@ -42,6 +51,8 @@ export class GameServer {
   readonly limits: SessionLimits;
   readonly snapshotRateHz: number;
   readonly maxConnections: number;
+  /** Seat and resume rules every session applies. */
+  readonly access: SessionAccess;
   private readonly sessions = new Set<ClientSession>();
   private readonly startedMs: number;
   private closing: Promise<void> | null = null;
@@ -55,6 +66,14 @@ export class GameServer {
     if (!(this.snapshotRateHz >= 1 && this.snapshotRateHz <= 60)) throw new Error(`snapshot rate must be in [1, 60] Hz, got ${this.snapshotRateHz}`);
     this.maxConnections = opts.maxConnections ?? 256;
     this.startedMs = this.clock.nowMs();
+    const graceMs = opts.resumeGraceMs ?? DEFAULT_RESUME_GRACE_MS;
+    const seats = opts.seats ?? null;
+    if (opts.requireSeat === true && seats === null) throw new Error('requireSeat needs seat tokens (a join secret) to check');
+    this.access = {
+      resume: graceMs > 0 ? new ResumeTokens({ clock: this.clock, graceMs, logger: this.logger }) : null,
+      seats,
+      requireSeat: opts.requireSeat ?? false,
+    };
     this.rooms = new RoomManager({
       clock: this.clock,
       metrics: this.metrics,
@@ -118,6 +137,7 @@ export class GameServer {
       logger: this.logger,
       rooms: this.rooms,
       limits: this.limits,
+      access: this.access,
       onEnd: (s) => this.sessions.delete(s),
     });
     if (!session.ended) this.sessions.add(session);
