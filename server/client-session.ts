@@ -4,23 +4,19 @@
 // another player's id.
 import {
   ByeReason,
-  createSnapshotFormat,
   decodeClientMessage,
   encodeServerMessage,
   ErrorCode,
   MAX_CLIENT_MESSAGE_BYTES,
-  PROTOCOL_VERSION,
   quantizeFrame,
   SharedFrameWork,
   SnapshotEncoder,
-  snapshotFormatSpec,
   type ClientMessage,
   type HelloMessage,
   type QuantizedFrame,
   type ServerMessage,
-  type SnapshotFormat,
 } from '../shared/protocol/index.ts';
-import type { BodyDescriptor, SimEvent } from '../shared/sim/types.ts';
+import type { SimEvent } from '../shared/sim/types.ts';
 import { admitSeat, type SessionAccess } from './access/admission.ts';
 import type { ResumeHolder } from './access/resume-tokens.ts';
 import type { Clock, TimerHandle } from './clock.ts';
@@ -30,6 +26,7 @@ import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
 import { RateLimiter, type RateLimit } from './rate-limiter.ts';
 import { RoomError, type Room, type RoomMember, type WorldFrame } from './room.ts';
+import { buildWelcome } from './welcome.ts';
 import type { RoomManager } from './room-manager.ts';
 
 /** Each room's latest quantized frame and the body copies it came from (the next frame's starting point). */
@@ -94,16 +91,6 @@ export interface SessionStats {
   bytesSent: number;
   inputsLate: number;
   inputsTooFar: number;
-}
-
-const formats = new WeakMap<Room, SnapshotFormat>();
-function formatFor(room: Room): SnapshotFormat {
-  let f = formats.get(room);
-  if (!f) {
-    f = createSnapshotFormat(room.bounds);
-    formats.set(room, f);
-  }
-  return f;
 }
 
 let nextSessionId = 1;
@@ -305,44 +292,15 @@ export class ClientSession implements RoomMember, ResumeHolder {
     this.room = room;
     this.playerId = playerId;
     this.state = 'joined';
-    const format = formatFor(room);
-    this.encoder = new SnapshotEncoder(format);
-    const dynamicBodies = this.liveDynamicDescriptors(room);
-    this.encoder.markDescriptorsKnown(dynamicBodies.map((d) => d.id));
     const resume = this.ctx.access.resume;
-    this.send({
-      type: 'welcome',
-      protocolVersion: PROTOCOL_VERSION,
-      playerId,
-      roomId: room.id,
-      tick: room.sim.tick,
-      tickRateHz: 60,
-      snapshotRateHz: room.snapshotRateHz,
-      scenario: { name: room.scenarioName, description: room.description, params: { ...room.params }, bounds: room.bounds },
-      snapshotFormat: snapshotFormatSpec(format),
-      staticBodies: room.staticDescriptors(),
-      dynamicBodies,
-      resumeToken: resume ? resume.issue(room, playerId, this) : null,
-      resumeGraceMs: resume ? resume.graceMs : 0,
-      resumed,
-    });
+    const welcome = buildWelcome(room, playerId, { token: resume ? resume.issue(room, playerId, this) : null, graceMs: resume ? resume.graceMs : 0, resumed });
+    this.encoder = welcome.encoder;
+    this.send(welcome.message);
   }
 
   private giveSeatBack(): void {
     if (this.seatId !== null) this.ctx.access.seats?.release(this.seatId);
     this.seatId = null;
-  }
-
-  /** Every live body snapshots will carry: non-static ones and statics spawned after the scene was built. */
-  private liveDynamicDescriptors(room: Room): BodyDescriptor[] {
-    const read = room.sim.readBodyStates();
-    const out: BodyDescriptor[] = [];
-    for (let i = 0; i < read.count; i++) {
-      if (room.isSceneStatic(read.ids[i])) continue;
-      const d = room.sim.bodyDescriptor(read.ids[i]);
-      if (d) out.push(d);
-    }
-    return out;
   }
 
   private joinFailed(error: unknown): void {
