@@ -450,9 +450,9 @@ export class ClientSession implements RoomMember, ResumeHolder {
       this.ctx.metrics.disconnects.inc({ reason: ErrorCode.Oversize });
     }
     this.ctx.logger.debug({ session: this.id, code, reason }, 'connection closed by peer');
-    // Closed without a bye: a dropped link (a client leaving on purpose says bye first), held for a reconnect;
-    // unless the transport closed it for breaking the protocol (an oversize or malformed frame).
-    this.finish(code === CloseCode.MessageTooBig || code === CloseCode.ProtocolError ? 'leave' : 'hold');
+    // A link that died without a close frame (network loss, a missed heartbeat) may come back: its player is held.
+    // A close frame means the client's end closed on purpose (or the transport closed it for breaking the protocol).
+    this.finish(code === CloseCode.Abnormal ? 'hold' : 'leave');
   }
 
   private finish(ending: Ending): void {
