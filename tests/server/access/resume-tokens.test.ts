@@ -131,6 +131,7 @@ describe('resume tokens (in-process server)', () => {
     expect(a.closed).not.toBeNull();
     expect(joinsAndLeaves(h.history().records, a.playerId).filter(([, w]) => w === 'leave')).toEqual([]);
     expect(h.room().clientCount).toBe(1);
+    expect(await h.server.metrics.registry.getSingleMetricAsString('taos_resumes_total')).toMatch(/taos_resumes_total 1$/m);
   });
 
   it('lets a player that says bye leave at once, and voids its token', async () => {
