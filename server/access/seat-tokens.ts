@@ -17,7 +17,7 @@ const VERSION = 's1';
 const SEAT_ID = /^[A-Za-z0-9_-]{22}$/;
 const EXPIRY = /^[0-9]{1,15}$/;
 const MAC = /^[A-Za-z0-9_-]{43}$/;
-/** Most used seats remembered at once (each until its expiry); past it redemptions are refused until some expire. */
+/** Default for the most used seats remembered at once (each until its expiry). */
 const MAX_REMEMBERED_SEATS = 100_000;
 
 /** A reserved seat. */
@@ -41,6 +41,8 @@ export interface SeatTokensOptions {
   nowMs?: () => number;
   /** Lifetime of a token when the reservation does not say. Default 60 s. */
   defaultTtlMs?: number;
+  /** Most used seats remembered at once; past it redemptions are refused until some expire. Default 100 000. */
+  maxRememberedSeats?: number;
 }
 
 /** Issues and redeems seat tokens. */
@@ -48,6 +50,7 @@ export class SeatTokens {
   readonly defaultTtlMs: number;
   private readonly secret: Buffer;
   private readonly nowMs: () => number;
+  private readonly maxRemembered: number;
   /** Used seat id → its expiry; an entry can go once its token would be refused as expired anyway. */
   private readonly used = new Map<string, number>();
   private lastSweepMs = 0;
@@ -57,6 +60,7 @@ export class SeatTokens {
     this.secret = Buffer.from(opts.secret, 'utf8');
     this.nowMs = opts.nowMs ?? Date.now;
     this.defaultTtlMs = opts.defaultTtlMs ?? DEFAULT_SEAT_TTL_MS;
+    this.maxRemembered = opts.maxRememberedSeats ?? MAX_REMEMBERED_SEATS;
     if (!Number.isInteger(this.defaultTtlMs) || this.defaultTtlMs < 1000 || this.defaultTtlMs > MAX_SEAT_TTL_MS) {
       throw new Error(`the seat lifetime must be between 1 s and ${MAX_SEAT_TTL_MS / 1000} s, got ${this.defaultTtlMs} ms`);
     }
@@ -100,7 +104,7 @@ export class SeatTokens {
     if (!check.ok) return check;
     if (this.used.has(check.seatId)) return { ok: false, reason: 'the seat token was already used' };
     this.sweep();
-    if (this.used.size >= MAX_REMEMBERED_SEATS) return { ok: false, reason: 'too many seats are in use right now; try again shortly' };
+    if (this.used.size >= this.maxRemembered) return { ok: false, reason: 'too many seats are in use right now; try again shortly' };
     this.used.set(check.seatId, check.expiresAtMs);
     return check;
   }
@@ -114,10 +118,10 @@ export class SeatTokens {
     return createHmac('sha256', this.secret).update(`taos-seat/1\n${roomId}\n${seatId}\n${expiresAtMs}`).digest('base64url');
   }
 
-  /** Forgets used seats whose tokens have expired (at most once a second). */
+  /** Forgets used seats whose tokens have expired (at most once a second, so a full table costs nothing per call). */
   private sweep(): void {
     const now = this.nowMs();
-    if (now - this.lastSweepMs < 1000 && this.used.size < MAX_REMEMBERED_SEATS) return;
+    if (now - this.lastSweepMs < 1000) return;
     this.lastSweepMs = now;
     for (const [id, expiresAtMs] of this.used) if (now > expiresAtMs) this.used.delete(id);
   }

@@ -61,6 +61,18 @@ describe('seat-tokens', () => {
     expect(seats.rememberedSeats).toBe(1); // the expired one was swept
   });
 
+  it('refuses redemptions while its table of used seats is full, until some of them expire', () => {
+    const wall = { ms: 1_000_000 };
+    const seats = new SeatTokens({ secret: SECRET, nowMs: () => wall.ms, maxRememberedSeats: 2 });
+    expect(seats.redeem(seats.issue('r', 1000).token, null).ok).toBe(true);
+    expect(seats.redeem(seats.issue('r', 5000).token, null).ok).toBe(true);
+    const waiting = seats.issue('r', 60_000);
+    expect(seats.redeem(waiting.token, null)).toEqual({ ok: false, reason: 'too many seats are in use right now; try again shortly' });
+    wall.ms += 2000; // the first used seat has expired and can be forgotten
+    expect(seats.redeem(waiting.token, null).ok).toBe(true);
+    expect(seats.rememberedSeats).toBe(2);
+  });
+
   it('refuses short secrets and lifetimes out of range', () => {
     expect(() => new SeatTokens({ secret: 'short' })).toThrow(/at least 16 characters/);
     expect(() => new SeatTokens({ secret: SECRET, defaultTtlMs: 10 })).toThrow(/between 1 s and 3600 s/);
