@@ -91,7 +91,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   const port = opts.port ?? 8080;
   const host = opts.host ?? '127.0.0.1';
   if (!Number.isInteger(port) || port < 0 || port > 65535) throw new Error(`port must be an integer in [0, 65535], got ${port}`);
-  const access = createServerAccess(opts, metrics);
+  const access = createServerAccess(opts, metrics, logger);
 
   const game = await GameServer.create({
     factory: createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null }),

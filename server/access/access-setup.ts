@@ -7,7 +7,7 @@ import type { ServerMetrics } from '../metrics.ts';
 import { AdminAuth } from './admin-auth.ts';
 import { createHttpGuard } from './http-guard.ts';
 import { originFacts, parseAllowedOrigins } from './origin-policy.ts';
-import type { Refusal } from './refusal.ts';
+import { AccessCode, type Refusal } from './refusal.ts';
 import { DEFAULT_SEAT_TTL_MS, SeatTokens } from './seat-tokens.ts';
 
 /** The access options of startServer (the serve command's flags). */
@@ -36,8 +36,11 @@ export interface ServerAccess {
   summary: { allowedOrigins: string; adminToken: boolean; joinSecret: 'given' | 'random per process'; requireSeat: boolean; seatTtlSeconds: number };
 }
 
+/** Distinct refused origins logged per process (each once, so a hostile page cannot flood the log). */
+const MAX_LOGGED_ORIGINS = 256;
+
 /** Checks the options and builds the guards; throws an Error naming the bad option. */
-export function createServerAccess(opts: AccessOptions, metrics: ServerMetrics): ServerAccess {
+export function createServerAccess(opts: AccessOptions, metrics: ServerMetrics, logger?: Logger): ServerAccess {
   const origins = parseAllowedOrigins(opts.allowedOrigins);
   const adminToken = opts.adminToken ?? null;
   const admin = adminToken === null ? null : new AdminAuth(adminToken);
@@ -49,13 +52,22 @@ export function createServerAccess(opts: AccessOptions, metrics: ServerMetrics):
     nowMs: opts.wallClockMs,
     defaultTtlMs: opts.seatTtlMs ?? DEFAULT_SEAT_TTL_MS,
   });
-  const counted = (refusal: Refusal | null): Refusal | null => {
-    if (refusal !== null) metrics.accessRefused.inc({ reason: refusal.code });
+  const loggedOrigins = new Set<string>();
+  const counted = (refusal: Refusal | null, req: IncomingMessage): Refusal | null => {
+    if (refusal === null) return null;
+    metrics.accessRefused.inc({ reason: refusal.code });
+    const origin = req.headers.origin;
+    // An operator whose own page is refused learns why from the log, once per origin.
+    if (refusal.code === AccessCode.OriginNotAllowed && typeof origin === 'string' && !loggedOrigins.has(origin) && loggedOrigins.size < MAX_LOGGED_ORIGINS) {
+      loggedOrigins.add(origin);
+      logger?.warn({ origin: origin.slice(0, 200), allowed: origins.entries.join(',') }, 'refused a page of another origin (add it to --allowed-origins if it is yours)');
+    }
     return refusal;
   };
+  const guard = createHttpGuard({ origins, admin });
   return {
-    authorize: createHttpGuard({ origins, admin, onRefused: (r) => counted(r) }),
-    checkUpgrade: (req) => counted(origins.check(originFacts(req))),
+    authorize: (req, method, path) => counted(guard(req, method, path), req),
+    checkUpgrade: (req) => counted(origins.check(originFacts(req)), req),
     seats,
     requireSeat,
     summary: {

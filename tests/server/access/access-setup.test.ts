@@ -1,5 +1,8 @@
 // Tests for server/access/access-setup.ts: options are checked before anything starts, the summary names what is in
-// force without secrets, and a server reachable from other machines without an admin token gets a warning.
+// force without secrets, refused origins are counted and logged once each, and a server reachable from other machines
+// without an admin token gets a warning.
+import type { IncomingMessage } from 'node:http';
+import { pino } from 'pino';
 import { describe, expect, it } from 'vitest';
 import { createServerAccess, openAdminWarning } from '../../../server/access/access-setup.ts';
 import { createMetrics } from '../../../server/metrics.ts';
@@ -25,6 +28,20 @@ describe('access-setup', () => {
     const c = createServerAccess({ joinSecret: 'a-join-secret-of-length' }, metrics());
     expect(c.seats.verify(b.seats.issue('default').token, null).ok).toBe(true);
     expect(a.seats.verify(b.seats.issue('default').token, null).ok).toBe(false);
+  });
+
+  it('counts refusals and logs each refused origin once, so an operator learns what to list', () => {
+    const m = metrics();
+    const lines: Array<Record<string, unknown>> = [];
+    const logger = pino({ level: 'warn' }, { write: (line: string) => void lines.push(JSON.parse(line) as Record<string, unknown>) });
+    const a = createServerAccess({}, m, logger);
+    const upgrade = (origin: string) => ({ headers: { origin, host: '127.0.0.1:8080' }, socket: {} }) as unknown as IncomingMessage;
+    expect(a.checkUpgrade(upgrade('http://mybox.lan:8080'))).toMatchObject({ status: 403 });
+    expect(a.checkUpgrade(upgrade('http://mybox.lan:8080'))).toMatchObject({ status: 403 });
+    expect(a.authorize(upgrade('https://evil.example'), 'POST', '/api/rooms')).toMatchObject({ status: 403 });
+    expect(a.checkUpgrade(upgrade('http://localhost:3000'))).toBeNull();
+    expect(lines.map((l) => l.origin)).toEqual(['http://mybox.lan:8080', 'https://evil.example']);
+    expect(lines[0]).toMatchObject({ allowed: 'self,loopback', msg: expect.stringMatching(/--allowed-origins/) });
   });
 
   it('warns when operator routes are open on an address other machines can reach', () => {
