@@ -1,13 +1,51 @@
 // `serve [--port 8080] [--host 127.0.0.1] [--scenario NAME] [--param k=v] [--snapshot-rate 30] [--record DIR]
-// [--max-clients N]`: runs the networked server (HTTP + WebSocket on one port) until SIGINT/SIGTERM.
+// [--max-clients N] [access flags]`: runs the networked server (HTTP + WebSocket on one port) until SIGINT/SIGTERM.
+// Secrets may come from the environment (TAOS_ADMIN_TOKEN, TAOS_JOIN_SECRET) so they stay out of `ps` output.
 import { DEFAULT_SCENARIO } from '../scenarios/index.ts';
+import { ADMIN_TOKEN_ENV, checkAdminTokenText } from '../server/access/admin-auth.ts';
+import { parseAllowedOrigins } from '../server/access/origin-policy.ts';
+import { JOIN_SECRET_ENV, MIN_JOIN_SECRET_LENGTH } from '../server/access/seat-tokens.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
-import { runServe } from './serve.ts';
+import { runServe, type ServeOptions } from './serve.ts';
 import type { ParsedArgs } from './args.ts';
 import { UsageError, type CliIo, type CommandSpec } from './command.ts';
 import { checkParams, parseSeed, scenarioNamed } from './scenario-setup.ts';
 
 const LOG_LEVELS = ['trace', 'debug', 'info', 'warn', 'error', 'fatal', 'silent'];
+
+/** A secret from its flag, else from its environment variable (empty means unset); null when neither is set. */
+function secret(args: ParsedArgs, flag: string, env: string): string | null {
+  const given = args.string(flag);
+  if (given !== undefined) return given;
+  const fromEnv = process.env[env];
+  return fromEnv === undefined || fromEnv === '' ? null : fromEnv;
+}
+
+/** The access flags, checked so that a mistake is a usage error (exit 2) before anything starts. */
+function accessOptions(args: ParsedArgs): Pick<ServeOptions, 'allowedOrigins' | 'adminToken' | 'joinSecret' | 'requireSeat' | 'seatTtlMs' | 'resumeGraceMs'> {
+  const allowedOrigins = args.string('allowed-origins');
+  const adminToken = secret(args, 'admin-token', ADMIN_TOKEN_ENV);
+  const joinSecret = secret(args, 'join-secret', JOIN_SECRET_ENV);
+  try {
+    parseAllowedOrigins(allowedOrigins);
+    if (adminToken !== null) checkAdminTokenText(adminToken, args.has('admin-token') ? '--admin-token' : ADMIN_TOKEN_ENV);
+  } catch (error) {
+    throw new UsageError((error as Error).message);
+  }
+  if (joinSecret !== null && joinSecret.length < MIN_JOIN_SECRET_LENGTH) {
+    throw new UsageError(`${args.has('join-secret') ? '--join-secret' : JOIN_SECRET_ENV} must be at least ${MIN_JOIN_SECRET_LENGTH} characters`);
+  }
+  const requireSeat = args.flag('require-seat');
+  if (requireSeat && adminToken === null) throw new UsageError(`--require-seat needs an admin token (--admin-token or ${ADMIN_TOKEN_ENV}): otherwise anyone could reserve a seat`);
+  return {
+    allowedOrigins,
+    adminToken,
+    joinSecret,
+    requireSeat,
+    seatTtlMs: args.number('seat-ttl', 60) * 1000,
+    resumeGraceMs: args.number('resume-grace', 30) * 1000,
+  };
+}
 
 async function run(args: ParsedArgs, io: CliIo): Promise<number> {
   const scenario = args.string('scenario') ?? DEFAULT_SCENARIO;
@@ -33,6 +71,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
       maxRooms: args.number('max-rooms'),
       clientDir: args.string('client-dir'),
       logLevel,
+      ...accessOptions(args),
     },
     io,
   );
@@ -46,7 +85,9 @@ export const serveCommand: CommandSpec = {
     'Serves the browser client at /, WebSocket play on the same port, /healthz, /metrics (Prometheus) and\n' +
     '/api/rooms. The default room runs --scenario; a client may open another room by naming a scenario as its room.\n' +
     'With --record DIR every room writes its input log there (replay it with `replay FILE`). Logs are JSON lines on\n' +
-    'stderr. SIGINT/SIGTERM: clients are told why, recordings are closed, then the process exits.',
+    'stderr. SIGINT/SIGTERM: clients are told why, recordings are closed, then the process exits.\n' +
+    `Access control (docs/server.md): pages from other origins are refused; ${ADMIN_TOKEN_ENV} and ${JOIN_SECRET_ENV} may\n` +
+    'replace --admin-token and --join-secret (the flag wins).',
   positionals: [],
   flags: [
     { name: 'port', kind: 'int', valueName: 'PORT', description: 'TCP port (0: any free port); default 8080', min: 0, max: 65535 },
@@ -60,6 +101,12 @@ export const serveCommand: CommandSpec = {
     { name: 'max-rooms', kind: 'int', valueName: 'N', description: 'most rooms at once (each is a Jolt world in the 128 MB heap); default 6', min: 1, max: 32 },
     { name: 'client-dir', kind: 'string', valueName: 'DIR', description: 'built browser client to serve; default dist/client' },
     { name: 'log-level', kind: 'string', valueName: 'LEVEL', description: 'log level (trace, debug, info, warn, error, silent); default info' },
+    { name: 'allowed-origins', kind: 'string', valueName: 'LIST', description: 'comma-separated origins whose pages may connect or post (plus self, loopback, *); default self,loopback' },
+    { name: 'admin-token', kind: 'string', valueName: 'TOKEN', description: `bearer token required for POST/DELETE /api/... and /metrics (or ${ADMIN_TOKEN_ENV}); default none` },
+    { name: 'join-secret', kind: 'string', valueName: 'SECRET', description: `HMAC key of seat tokens, shared by servers that accept each other's seats (or ${JOIN_SECRET_ENV}); default random` },
+    { name: 'require-seat', kind: 'boolean', description: 'admit only players whose hello carries a seat token (needs an admin token)' },
+    { name: 'seat-ttl', kind: 'int', valueName: 'SECONDS', description: 'lifetime of a seat token; default 60', min: 1, max: 3600 },
+    { name: 'resume-grace', kind: 'int', valueName: 'SECONDS', description: 'how long a dropped player is held for a reconnect (0: off); default 30', min: 0, max: 3600 },
   ],
   run,
 };

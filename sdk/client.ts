@@ -1,7 +1,9 @@
 // The typed network client for browsers and Node 24: connect(url, {name, room}) joins a room, keeps the clock in
 // sync, sends inputs ahead of the server tick, decodes and acks snapshots into an interpolation buffer, reports
-// events and errors, and reconnects with backoff after drops. One LinkSession per connection does the wire work.
+// events and errors, and reconnects with backoff after drops, asking for the same player back with the resume token
+// of the last welcome. One LinkSession per connection does the wire work.
 import type { Clock, TimerHandle } from '../shared/clock.ts';
+import { TOKEN_PATTERN } from '../shared/protocol/limits.ts';
 import { checkPlayerName, checkRoomId } from '../shared/protocol/validation.ts';
 import type { ErrorMessage, ServerByeMessage, WelcomeMessage } from '../shared/protocol/server-messages.ts';
 import { NEUTRAL_INPUT, validateInputCommand, type InputCommand } from '../shared/sim/input.ts';
@@ -19,8 +21,14 @@ import { webSocketTransport } from './websocket-transport.ts';
 export interface NetClientOptions {
   /** Display name (1–32 characters). */
   name: string;
-  /** Room to join; null or absent: the server's default room. */
+  /** Room to join; null or absent: the server's default room (or the seat token's room). */
   room?: string | null;
+  /** Seat token for the first join (a game backend gets it from `POST /api/rooms/:id/seats`); used once. */
+  seat?: string;
+  /** Resume token of an earlier connection (see `resumeToken`): the first hello asks for that player back. */
+  resumeToken?: string;
+  /** Whether reconnects ask for the same player back with the last welcome's resume token. Default true. */
+  resume?: boolean;
   /** How to open links. Default: the global WebSocket. */
   transport?: TransportFactory;
   /** Time source. Default: performance.now() and setTimeout. */
@@ -146,6 +154,7 @@ export class NetClient {
   private reconnectCount = 0;
   private retryTimer: TimerHandle | null = null;
   private closedInfo: ClosedInfo | null = null;
+  private resumeTokenValue: string | null;
   private waiters: Array<{ resolve: (w: WelcomeMessage) => void; reject: (e: Error) => void }> = [];
 
   constructor(url: string, opts: NetClientOptions) {
@@ -154,6 +163,11 @@ export class NetClient {
     const room = checkRoomId(opts.room ?? null);
     if (!room.ok) throw new Error(`connect: ${room.error}`);
     if (typeof url !== 'string' || url === '') throw new Error('connect: url must be a non-empty string');
+    for (const key of ['seat', 'resumeToken'] as const) {
+      const token = opts[key];
+      if (token !== undefined && (typeof token !== 'string' || !TOKEN_PATTERN.test(token))) throw new Error(`connect: ${key} must be a token of A-Z a-z 0-9 _ . - characters`);
+    }
+    this.resumeTokenValue = opts.resumeToken ?? null;
     this.url = url;
     this.name = name.name;
     this.requestedRoom = room.room;
@@ -178,6 +192,14 @@ export class NetClient {
   /** This client's player id in the current connection. */
   get playerId(): number | null {
     return this.welcomeMsg?.playerId ?? null;
+  }
+
+  /**
+   * The token that takes this player back on a new connection within the server's grace window (the client uses it
+   * by itself after a drop; keep it, e.g. in sessionStorage, to resume after a page reload). Null before a welcome.
+   */
+  get resumeToken(): string | null {
+    return this.resumeTokenValue;
   }
 
   /** How the client ended, once closed. */
@@ -288,6 +310,9 @@ export class NetClient {
         interpolation: this.opts.interpolation ?? {},
         lead: this.opts.lead ?? {},
         input: this.input,
+        // A seat is used once: only until the first welcome. Later links ask for the same player back instead.
+        seatToken: this.welcomeMsg === null ? this.opts.seat : undefined,
+        resumeToken: this.opts.resume !== false && this.resumeTokenValue !== null ? this.resumeTokenValue : undefined,
       },
       {
         welcome: (w) => this.session === session && this.onWelcome(w),
@@ -304,6 +329,7 @@ export class NetClient {
 
   private onWelcome(w: WelcomeMessage): void {
     this.welcomeMsg = w;
+    this.resumeTokenValue = w.resumeToken;
     this.attempts = 0;
     this.dynamic.clear();
     this.pendingDescriptorRemoval = [];

@@ -72,6 +72,10 @@ export interface LinkSessionOptions {
   lead: Partial<InputLeadOptions>;
   /** The command to send until setInput changes it (kept across reconnects). */
   input: InputCommand;
+  /** Seat token for the hello (servers that admit only reserved seats). */
+  seatToken?: string;
+  /** Resume token of the previous link's welcome: ask for the same player back. */
+  resumeToken?: string;
 }
 
 /** Counters of one link. */
@@ -118,7 +122,7 @@ export class LinkSession {
     this.sender = new InputSender({ redundancy: opts.inputRedundancy });
     this.sender.setCommand(opts.input);
     this.transport = opts.transport(opts.url, {
-      open: () => this.send({ type: 'hello', version: PROTOCOL_VERSION, name: opts.name, room: opts.room }),
+      open: () => this.send({ type: 'hello', version: PROTOCOL_VERSION, name: opts.name, room: opts.room, seatToken: opts.seatToken, resumeToken: opts.resumeToken }),
       message: (data) => this.receive(data),
       close: (code, reason) => this.end(code, reason),
     });
@@ -225,6 +229,10 @@ export class LinkSession {
     this.counters.messagesIn++;
     this.inLog.push([now, data.length]);
     const r = decodeServerMessage(data);
+    if (!r.ok && r.serverVersion !== undefined && this.welcomeMsg === null) {
+      this.versionMismatch(r.serverVersion);
+      return;
+    }
     if (!r.ok) {
       this.h.protocolError(`undecodable server message: ${r.error}`);
       return;
@@ -266,9 +274,7 @@ export class LinkSession {
       return;
     }
     if (w.protocolVersion !== PROTOCOL_VERSION) {
-      this.errorBeforeWelcome = { type: 'error', code: 'version-mismatch', message: `server speaks protocol ${w.protocolVersion}, this client ${PROTOCOL_VERSION}` };
-      this.h.serverError(this.errorBeforeWelcome);
-      this.transport.close(1002, 'protocol version mismatch');
+      this.versionMismatch(w.protocolVersion);
       return;
     }
     let format: SnapshotFormat;
@@ -290,6 +296,13 @@ export class LinkSession {
     this.h.welcome(w);
     this.ping();
     this.pump();
+  }
+
+  /** The server speaks another protocol version: nothing it sends can be trusted to mean what we think. */
+  private versionMismatch(serverVersion: number): void {
+    this.errorBeforeWelcome = { type: 'error', code: 'version-mismatch', message: `the server speaks protocol ${serverVersion} and this client ${PROTOCOL_VERSION}: use a client built for protocol ${serverVersion}` };
+    this.h.serverError(this.errorBeforeWelcome);
+    this.transport.close(1002, 'protocol version mismatch');
   }
 
   private ping(): void {

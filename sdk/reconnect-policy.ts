@@ -1,5 +1,6 @@
 // When and how soon the client reconnects: exponential backoff with jitter, a cap on attempts, and which endings
-// are final (a kick, a refused version, a missing room) versus worth retrying (drops, restarts, a full server).
+// are final (a kick, a refused version or seat, a missing room, a takeover) versus worth retrying (drops, restarts,
+// a full server).
 import { ErrorCode, RECONNECTABLE_BYE_REASONS } from '../shared/protocol/opcodes.ts';
 
 /** Reconnect settings. */
@@ -40,7 +41,14 @@ export function backoffDelayMs(policy: ReconnectPolicy, attempt: number, random:
 }
 
 /** Error codes that make retrying pointless. */
-const FINAL_ERRORS: ReadonlySet<string> = new Set<string>([ErrorCode.VersionMismatch, ErrorCode.RoomNotFound, ErrorCode.BadMessage, ErrorCode.Malformed]);
+const FINAL_ERRORS: ReadonlySet<string> = new Set<string>([
+  ErrorCode.VersionMismatch,
+  ErrorCode.RoomNotFound,
+  ErrorCode.BadMessage,
+  ErrorCode.Malformed,
+  ErrorCode.SeatRequired,
+  ErrorCode.SeatRefused,
+]);
 
 /** Whether an ending allows a reconnect: no bye or a restart-like bye, and no final error before the welcome. */
 export function isRetryable(bye: string | null, errorBeforeWelcome: string | null): boolean {

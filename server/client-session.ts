@@ -1,6 +1,7 @@
 // One client connection from hello to bye: validates every incoming frame, enforces per-client rate and error limits,
-// joins a room, feeds inputs/acks/pings to it, and sends welcome, events (reliable) and snapshots (skipped when the
-// socket is backed up). Nothing a client sends reaches the room unvalidated or under another player's id.
+// joins a room (or resumes a held player), feeds inputs/acks/pings to it, and sends welcome, events (reliable) and
+// snapshots (skipped when the socket is backed up). Nothing a client sends reaches the room unvalidated or under
+// another player's id.
 import type { Clock, TimerHandle } from '../shared/clock.ts';
 import {
   ByeReason,
@@ -8,20 +9,21 @@ import {
   encodeServerMessage,
   ErrorCode,
   MAX_CLIENT_MESSAGE_BYTES,
-  PROTOCOL_VERSION,
   SnapshotEncoder,
-  snapshotFormatSpec,
   type ClientMessage,
+  type HelloMessage,
   type ServerMessage,
 } from '../shared/protocol/index.ts';
-import type { BodyDescriptor, SimEvent } from '../shared/sim/types.ts';
-import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
+import type { SimEvent } from '../shared/sim/types.ts';
+import { admitSeat, type SessionAccess } from './access/admission.ts';
+import type { ResumeHolder } from './access/resume-tokens.ts';
 import { CloseCode, type ServerConnection } from './connection.ts';
 import { OfferResult } from './input-buffer.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
 import { RateLimiter, type RateLimit } from './rate-limiter.ts';
 import { RoomError, type Room, type RoomMember, type WorldFrame } from './room.ts';
+import { buildWelcome } from './welcome.ts';
 import type { RoomManager } from './room-manager.ts';
 
 /** Per-client limits. */
@@ -64,6 +66,8 @@ export interface SessionContext {
   logger: Logger;
   rooms: RoomManager;
   limits: SessionLimits;
+  /** Seat and resume rules. */
+  access: SessionAccess;
   /** Called once when the session ends. */
   onEnd(session: ClientSession): void;
 }
@@ -83,8 +87,11 @@ export interface SessionStats {
 
 let nextSessionId = 1;
 
+/** How a joined player's session ended: leave the room, or be held for a reconnect (the link dropped). */
+type Ending = 'leave' | 'hold';
+
 /** One connected client. */
-export class ClientSession implements RoomMember {
+export class ClientSession implements RoomMember, ResumeHolder {
   readonly id = nextSessionId++;
   readonly conn: ServerConnection;
   readonly stats: SessionStats = { messagesReceived: 0, badMessages: 0, errorsSent: 0, snapshotsSent: 0, snapshotsSkipped: 0, snapshotBytes: 0, bytesSent: 0, inputsLate: 0, inputsTooFar: 0 };
@@ -97,6 +104,8 @@ export class ClientSession implements RoomMember {
   private room: Room | null = null;
   private playerId = 0;
   private encoder: SnapshotEncoder | null = null;
+  /** The seat this session's hello used, until the join it was for succeeds (given back if it fails). */
+  private seatId: string | null = null;
 
   constructor(conn: ServerConnection, ctx: SessionContext) {
     this.conn = conn;
@@ -147,6 +156,11 @@ export class ClientSession implements RoomMember {
     }
     const decoded = decodeClientMessage(data, this.ctx.limits.maxMessageBytes);
     if (!decoded.ok) {
+      if (decoded.code === ErrorCode.VersionMismatch && this.state === 'hello') {
+        this.sendError(decoded.code, decoded.error);
+        this.end(ByeReason.VersionMismatch, decoded.error, CloseCode.PolicyViolation);
+        return;
+      }
       this.refuse(decoded.code, decoded.error);
       return;
     }
@@ -163,7 +177,7 @@ export class ClientSession implements RoomMember {
   private handle(msg: ClientMessage): void {
     switch (msg.type) {
       case 'hello':
-        this.onHello(msg.version, msg.name, msg.room);
+        this.onHello(msg);
         return;
       case 'input': {
         if (this.state !== 'joined' || !this.room) {
@@ -205,26 +219,44 @@ export class ClientSession implements RoomMember {
     }
   }
 
-  private onHello(version: number, name: string, roomId: string | null): void {
+  private onHello(hello: HelloMessage): void {
     if (this.state !== 'hello') {
       this.refuse(ErrorCode.UnexpectedMessage, 'hello was already received');
-      return;
-    }
-    if (version !== PROTOCOL_VERSION) {
-      this.end(ByeReason.VersionMismatch, `server speaks protocol ${PROTOCOL_VERSION}, client sent ${version}`, CloseCode.PolicyViolation);
       return;
     }
     this.state = 'joining';
     if (this.helloTimer) this.ctx.clock.clearTimer(this.helloTimer);
     this.helloTimer = null;
-    this.ctx.rooms.resolve(roomId === null ? {} : { roomId }).then(
-      (room) => this.joinRoom(room, name),
+    if (hello.resumeToken !== undefined) {
+      const resume = this.ctx.access.resume;
+      const claim = resume ? resume.claim(hello.resumeToken, hello.room) : ({ ok: false, reason: 'this server does not resume players' } as const);
+      if (claim.ok) {
+        this.resumePlayer(claim.room, claim.playerId);
+        return;
+      }
+      // Not fatal: the client is told why and joins as a new player (under the same seat rules as anyone).
+      this.ctx.metrics.accessRefused.inc({ reason: ErrorCode.ResumeRefused });
+      this.sendError(ErrorCode.ResumeRefused, `cannot resume: ${claim.reason}; joining as a new player`);
+    }
+    const seat = admitSeat(this.ctx.access, hello.seatToken, hello.room);
+    if (!seat.ok) {
+      this.ctx.metrics.accessRefused.inc({ reason: seat.code });
+      this.sendError(seat.code, seat.message);
+      this.end(ByeReason.SeatRefused, seat.message, CloseCode.PolicyViolation);
+      return;
+    }
+    this.seatId = seat.seatId;
+    this.ctx.rooms.resolve(seat.roomId === null ? {} : { roomId: seat.roomId }).then(
+      (room) => this.joinRoom(room, hello.name),
       (error: unknown) => this.joinFailed(error),
     );
   }
 
   private joinRoom(room: Room, name: string): void {
-    if (this.state !== 'joining') return; // the client left while the room was being created
+    if (this.state !== 'joining') {
+      this.giveSeatBack(); // the client left while the room was being created
+      return;
+    }
     let joined;
     try {
       joined = room.join(this, name);
@@ -232,42 +264,39 @@ export class ClientSession implements RoomMember {
       this.joinFailed(error);
       return;
     }
-    this.room = room;
-    this.playerId = joined.playerId;
-    this.state = 'joined';
-    const format = room.snapshots.format;
-    this.encoder = new SnapshotEncoder(format);
-    const dynamicBodies = this.liveDynamicDescriptors(room);
-    this.encoder.markDescriptorsKnown(dynamicBodies.map((d) => d.id));
-    this.send({
-      type: 'welcome',
-      protocolVersion: PROTOCOL_VERSION,
-      playerId: joined.playerId,
-      roomId: room.id,
-      tick: room.sim.tick,
-      tickRateHz: TICK_RATE_HZ,
-      snapshotRateHz: room.snapshotRateHz,
-      scenario: { name: room.scenarioName, description: room.description, params: { ...room.params }, bounds: room.bounds },
-      snapshotFormat: snapshotFormatSpec(format),
-      staticBodies: room.staticDescriptors(),
-      dynamicBodies,
-    });
+    this.seatId = null;
+    this.enterRoom(room, joined.playerId, false);
     this.ctx.logger.info({ session: this.id, remote: this.conn.remote, room: room.id, playerId: joined.playerId, name }, 'player joined');
   }
 
-  /** Every live body snapshots will carry: non-static ones and statics spawned after the scene was built. */
-  private liveDynamicDescriptors(room: Room): BodyDescriptor[] {
-    const read = room.sim.readBodyStates();
-    const out: BodyDescriptor[] = [];
-    for (let i = 0; i < read.count; i++) {
-      if (room.isSceneStatic(read.ids[i])) continue;
-      const d = room.sim.bodyDescriptor(read.ids[i]);
-      if (d) out.push(d);
+  /** Takes over a player claimed with its resume token: same id and character, nothing in the input record. */
+  private resumePlayer(room: Room, playerId: number): void {
+    if (room.reattach(playerId, this) === null) {
+      this.joinFailed(new RoomError(ErrorCode.RoomNotFound, `player ${playerId} is no longer in room ${room.id}`));
+      return;
     }
-    return out;
+    this.enterRoom(room, playerId, true);
+    this.ctx.metrics.resumes.inc();
+    this.ctx.logger.info({ session: this.id, remote: this.conn.remote, room: room.id, playerId }, 'player resumed');
+  }
+
+  private enterRoom(room: Room, playerId: number, resumed: boolean): void {
+    this.room = room;
+    this.playerId = playerId;
+    this.state = 'joined';
+    const resume = this.ctx.access.resume;
+    const welcome = buildWelcome(room, playerId, { token: resume ? resume.issue(room, playerId, this) : null, graceMs: resume ? resume.graceMs : 0, resumed });
+    this.encoder = welcome.encoder;
+    this.send(welcome.message);
+  }
+
+  private giveSeatBack(): void {
+    if (this.seatId !== null) this.ctx.access.seats?.release(this.seatId);
+    this.seatId = null;
   }
 
   private joinFailed(error: unknown): void {
+    this.giveSeatBack();
     if (this.state === 'closed') return;
     const code = error instanceof RoomError ? error.code : ErrorCode.Internal;
     const message = error instanceof Error ? error.message : String(error);
@@ -337,6 +366,7 @@ export class ClientSession implements RoomMember {
 
   /** The room dropped this client after a failed delivery (RoomMember). */
   removed(reason: string): void {
+    if (this.room) this.ctx.access.resume?.release(this.room, this.playerId, 'the server removed the player');
     this.room = null;
     this.end(ByeReason.Kicked, reason, CloseCode.InternalError);
   }
@@ -345,6 +375,13 @@ export class ClientSession implements RoomMember {
   roomClosed(reason: string): void {
     this.room = null;
     this.end(ByeReason.RoomClosed, reason, CloseCode.GoingAway);
+  }
+
+  /** Another connection resumed this player (ResumeHolder): end this link without leaving the room. */
+  replaced(): void {
+    if (this.state === 'closed') return;
+    this.room = null;
+    this.end(ByeReason.Replaced, 'another connection resumed this player', CloseCode.Normal);
   }
 
   /** Reliable messages may not be dropped; a client this far behind is disconnected instead of queued for. */
@@ -363,7 +400,8 @@ export class ClientSession implements RoomMember {
       this.ctx.metrics.disconnects.inc({ reason });
       this.ctx.logger.info({ session: this.id, remote: this.conn.remote, reason, message }, 'disconnecting client');
     }
-    this.finish();
+    // A link that timed out (or fell too far behind) may come back: its player is held like after a drop.
+    this.finish(reason === ByeReason.Timeout ? 'hold' : 'leave');
     this.conn.close(code, `${reason}: ${message}`);
   }
 
@@ -375,18 +413,26 @@ export class ClientSession implements RoomMember {
       this.ctx.metrics.disconnects.inc({ reason: ErrorCode.Oversize });
     }
     this.ctx.logger.debug({ session: this.id, code, reason }, 'connection closed by peer');
-    this.finish();
+    // A link that died without a close frame (network loss, a missed heartbeat) may come back: its player is held.
+    // A close frame means the client's end closed on purpose (or the transport closed it for breaking the protocol).
+    this.finish(code === CloseCode.Abnormal ? 'hold' : 'leave');
   }
 
-  private finish(): void {
+  private finish(ending: Ending): void {
     if (this.state === 'closed') return;
     const wasJoined = this.state === 'joined';
     this.state = 'closed';
     if (this.helloTimer) this.ctx.clock.clearTimer(this.helloTimer);
     this.helloTimer = null;
     if (wasJoined && this.room) {
-      this.ctx.logger.info({ session: this.id, room: this.room.id, playerId: this.playerId }, 'player left');
-      this.room.leave(this.playerId);
+      const resume = this.ctx.access.resume;
+      if (ending === 'hold' && resume !== null && resume.hold(this.room, this.playerId)) {
+        this.ctx.logger.info({ session: this.id, room: this.room.id, playerId: this.playerId, graceMs: resume.graceMs }, 'player link dropped: held for a reconnect');
+      } else {
+        this.ctx.logger.info({ session: this.id, room: this.room.id, playerId: this.playerId }, 'player left');
+        this.room.leave(this.playerId);
+        resume?.release(this.room, this.playerId);
+      }
     }
     this.room = null;
     this.ctx.metrics.clients.dec();

@@ -8,6 +8,8 @@ export const CloseCode = {
   ProtocolError: 1002,
   UnsupportedData: 1003,
   PolicyViolation: 1008,
+  /** Never sent: what a link reports when it died without a close frame (network loss, a missed heartbeat). */
+  Abnormal: 1006,
   MessageTooBig: 1009,
   InternalError: 1011,
   TryAgainLater: 1013,

@@ -3,6 +3,9 @@
 import type { Clock } from '../shared/clock.ts';
 import { ByeReason, encodeServerMessage } from '../shared/protocol/index.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
+import type { SessionAccess } from './access/admission.ts';
+import { DEFAULT_RESUME_GRACE_MS, ResumeTokens } from './access/resume-tokens.ts';
+import type { SeatTokens } from './access/seat-tokens.ts';
 import { SystemClock } from './clock.ts';
 import { ClientSession, DEFAULT_SESSION_LIMITS, type SessionLimits } from './client-session.ts';
 import { CloseCode, type ServerConnection } from './connection.ts';
@@ -33,6 +36,12 @@ export interface GameServerOptions {
   maxInputLeadTicks?: number;
   pauseWhenEmpty?: boolean;
   limits?: Partial<SessionLimits>;
+  /** How long a player whose link dropped is held for a reconnect with its resume token (ms). Default 30 000; 0: off. */
+  resumeGraceMs?: number;
+  /** Seat tokens this server issues and accepts (POST /api/rooms/:id/seats). Default none. */
+  seats?: SeatTokens | null;
+  /** Refuse hellos without a valid seat token. Needs `seats`. Default false. */
+  requireSeat?: boolean;
 }
 
 /** The server core. */
@@ -44,6 +53,8 @@ export class GameServer {
   readonly limits: SessionLimits;
   readonly snapshotRateHz: number;
   readonly maxConnections: number;
+  /** Seat and resume rules every session applies. */
+  readonly access: SessionAccess;
   private readonly sessions = new Set<ClientSession>();
   private readonly startedMs: number;
   private closing: Promise<void> | null = null;
@@ -57,6 +68,14 @@ export class GameServer {
     if (!(this.snapshotRateHz >= 1 && this.snapshotRateHz <= TICK_RATE_HZ)) throw new Error(`snapshot rate must be in [1, ${TICK_RATE_HZ}] Hz, got ${this.snapshotRateHz}`);
     this.maxConnections = opts.maxConnections ?? 256;
     this.startedMs = this.clock.nowMs();
+    const graceMs = opts.resumeGraceMs ?? DEFAULT_RESUME_GRACE_MS;
+    const seats = opts.seats ?? null;
+    if (opts.requireSeat === true && seats === null) throw new Error('requireSeat needs seat tokens (a join secret) to check');
+    this.access = {
+      resume: graceMs > 0 ? new ResumeTokens({ clock: this.clock, graceMs, logger: this.logger }) : null,
+      seats,
+      requireSeat: opts.requireSeat ?? false,
+    };
     this.rooms = new RoomManager({
       clock: this.clock,
       metrics: this.metrics,
@@ -120,6 +139,7 @@ export class GameServer {
       logger: this.logger,
       rooms: this.rooms,
       limits: this.limits,
+      access: this.access,
       onEnd: (s) => this.sessions.delete(s),
     });
     if (!session.ended) this.sessions.add(session);

@@ -1,7 +1,9 @@
-// The HTTP half of the server's single port: /healthz, /metrics, the rooms API and the static client files.
-// Routing and request parsing only; what the answers contain comes from the HttpApi the server passes in.
+// The HTTP half of the server's single port: /healthz, /metrics, the rooms and seats API and the static client files.
+// Routing and request parsing only; what the answers contain (and who may ask) comes from the HttpApi passed in.
 import { createServer, type IncomingMessage, type Server, type ServerResponse } from 'node:http';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
+import { sendRefusal, type Refusal } from './access/refusal.ts';
+import { parseSeatRequest, type SeatAnswer, type SeatRequest } from './access/seat-request.ts';
 import type { RoomInfo } from './room.ts';
 
 /** What the HTTP routes read and do. */
@@ -14,8 +16,12 @@ export interface HttpApi {
   listScenarios(): unknown[];
   /** POST /api/rooms {scenario, params?, roomId?}: creates (or returns) a room. Throws an Error with `code` on refusal. */
   createRoom(req: { scenario: string; params?: Record<string, number>; roomId?: string }): Promise<RoomInfo>;
+  /** POST /api/rooms/ID/seats {ttlSeconds?}: a seat token for that room. Throws an Error with `code` on refusal. */
+  reserveSeat(roomId: string, req: SeatRequest): SeatAnswer;
   /** GET /metrics. */
   metrics(): Promise<{ body: string; contentType: string }>;
+  /** Access rules, checked before any route: a refusal is the whole answer. */
+  authorize?(req: IncomingMessage, method: string, path: string): Refusal | null;
   /** Anything else: static files; resolves true when it answered. */
   staticFiles(req: IncomingMessage, res: ServerResponse): Promise<boolean>;
 }
@@ -88,6 +94,11 @@ async function route(api: HttpApi, req: IncomingMessage, res: ServerResponse): P
   const url = new URL(req.url ?? '/', 'http://localhost');
   const path = url.pathname;
   const method = req.method ?? 'GET';
+  const refusal = api.authorize?.(req, method, path) ?? null;
+  if (refusal !== null) {
+    sendRefusal(res, refusal);
+    return;
+  }
   if (path === '/healthz' && (method === 'GET' || method === 'HEAD')) {
     const h = api.health();
     sendJson(res, h.ok ? 200 : 503, h);
@@ -115,6 +126,22 @@ async function route(api: HttpApi, req: IncomingMessage, res: ServerResponse): P
       const e = error as Error & { status?: number; code?: string };
       const status = e.status ?? (e.code !== undefined ? (ERROR_STATUS[e.code] ?? 500) : 500);
       sendJson(res, status, { error: e.message, code: e.code ?? 'bad-request' });
+    }
+    return;
+  }
+  const seatMatch = /^\/api\/rooms\/([^/]+)\/seats$/.exec(path);
+  if (seatMatch && method === 'POST') {
+    try {
+      const seat = api.reserveSeat(decodeURIComponent(seatMatch[1]), parseSeatRequest(await readBody(req)));
+      sendJson(res, 201, { seat });
+    } catch (error) {
+      if (error instanceof URIError) {
+        sendJson(res, 400, { error: 'bad-request', message: 'the room id in the path is not valid percent-encoding' });
+        return;
+      }
+      const e = error as Error & { status?: number; code?: string };
+      const status = e.status ?? (e.code !== undefined ? (ERROR_STATUS[e.code] ?? 500) : 500);
+      sendJson(res, status, { error: e.code ?? (status === 413 ? 'body-too-large' : 'bad-request'), message: e.message });
     }
     return;
   }

@@ -23,6 +23,8 @@ export interface InputBufferStats {
   tooFar: number;
   /** Ticks applied with a repeated command because none had arrived. */
   repeated: number;
+  /** Ticks applied with the hold command while the player's link was down (not counted as repeated). */
+  held: number;
 }
 
 const HISTORY = 256;
@@ -34,11 +36,12 @@ export class InputBuffer {
   private readonly pending = new Map<number, InputCommand>();
   private last: InputCommand = NEUTRAL_INPUT;
   private nextTick: number;
+  private suspended = false;
   // The last HISTORY applied ticks: which tick sits in each slot, and whether its own command had arrived, so a
   // redundant copy of an applied input is told apart from an input that really came too late.
   private readonly appliedTick = new Float64Array(HISTORY).fill(-1);
   private readonly appliedOwn = new Uint8Array(HISTORY);
-  readonly stats: InputBufferStats = { accepted: 0, duplicates: 0, late: 0, tooFar: 0, repeated: 0 };
+  readonly stats: InputBufferStats = { accepted: 0, duplicates: 0, late: 0, tooFar: 0, repeated: 0, held: 0 };
 
   /** `firstTick` is the first tick this player's commands will be applied on. */
   constructor(firstTick: number, maxLeadTicks = 120) {
@@ -61,6 +64,26 @@ export class InputBuffer {
   /** The command applied most recently (neutral before the first). */
   get lastApplied(): InputCommand {
     return this.last;
+  }
+
+  /** Whether the buffer is suspended (its player's link is down). */
+  get isSuspended(): boolean {
+    return this.suspended;
+  }
+
+  /**
+   * The player's link dropped: commands still waiting are discarded, and until resume() every tick applies `hold`
+   * (counted as held, not as repeated). After resume() `hold` stays the command repeated when none arrives.
+   */
+  suspend(hold: InputCommand): void {
+    this.suspended = true;
+    this.pending.clear();
+    this.last = hold;
+  }
+
+  /** The player is back: offered commands apply again from the next tick. */
+  resume(): void {
+    this.suspended = false;
   }
 
   /** Offers an already-validated command for `tick`. The first copy for a tick wins; the buffer never grows past the window. */
@@ -91,6 +114,13 @@ export class InputBuffer {
   take(tick: number): { command: InputCommand; repeated: boolean } {
     if (tick !== this.nextTick) throw new Error(`InputBuffer.take: expected tick ${this.nextTick}, got ${tick}`);
     this.nextTick = tick + 1;
+    if (this.suspended) {
+      this.pending.delete(tick);
+      this.appliedTick[tick % HISTORY] = tick;
+      this.appliedOwn[tick % HISTORY] = 0;
+      this.stats.held++;
+      return { command: this.last, repeated: false };
+    }
     const cmd = this.pending.get(tick);
     this.appliedTick[tick % HISTORY] = tick;
     this.appliedOwn[tick % HISTORY] = cmd !== undefined ? 1 : 0;

@@ -42,6 +42,10 @@ export interface ServerMetrics {
   /** Clients disconnected by the server (reason label). */
   readonly disconnects: Counter<string>;
   readonly connections: Counter<string>;
+  /** Requests, upgrades and hellos refused by access control (reason label: the refusal's code). */
+  readonly accessRefused: Counter<string>;
+  /** Players taken back by a new connection with their resume token. */
+  readonly resumes: Counter<string>;
 }
 
 /** Creates a fresh registry with all metrics (plus Node process metrics when `processMetrics`). */
@@ -77,6 +81,8 @@ export function createMetrics(opts: { processMetrics?: boolean; prefix?: string 
     badMessages: counter('bad_messages_total', 'Messages rejected by validation', ['reason']),
     disconnects: counter('disconnects_total', 'Clients disconnected by the server', ['reason']),
     connections: counter('connections_total', 'WebSocket connections accepted'),
+    accessRefused: counter('access_refused_total', 'Requests, WebSocket upgrades and hellos refused by access control', ['reason']),
+    resumes: counter('resumes_total', 'Players taken back by a new connection with their resume token'),
   };
 }
 

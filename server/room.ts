@@ -123,10 +123,16 @@ export interface RoomInfo {
 interface Player {
   playerId: number;
   name: string;
-  member: RoomMember;
+  /** Null while the player's link is down and the room holds its character for a reconnect. */
+  member: RoomMember | null;
   inputs: InputBuffer;
   /** True once the join has gone into a record. */
   inWorld: boolean;
+}
+
+/** What a held player (link down, character kept) applies each tick: no movement, no buttons, same look direction. */
+export function heldInput(last: InputCommand): InputCommand {
+  return { moveX: 0, moveZ: 0, yaw: last.yaw, pitch: last.pitch, buttons: 0 };
 }
 
 /** A running room; build it with `new Room(sim, opts)` and call start(). */
@@ -194,9 +200,21 @@ export class Room {
     return this.players.get(playerId)?.inputs.stats.repeated ?? 0;
   }
 
-  /** Members (connected players). */
+  /** Players in the room, counting those held for a reconnect (they keep their character and their place). */
   get clientCount(): number {
     return this.players.size;
+  }
+
+  /** Players whose link is down and whose character the room holds for a reconnect. */
+  get heldCount(): number {
+    let n = 0;
+    for (const p of this.players.values()) if (p.member === null) n++;
+    return n;
+  }
+
+  /** Whether a player is in the room (connected or held). */
+  hasPlayer(playerId: number): boolean {
+    return this.players.has(playerId);
   }
 
   /** Whether the room has closed. */
@@ -251,6 +269,30 @@ export class Room {
     this.opts.metrics.players.dec();
     if (p.inWorld) this.pendingLeaves.push(playerId);
     if (this.players.size === 0) this.emptyListeners.forEach((fn) => fn(true));
+  }
+
+  /**
+   * The player's link dropped: its character stays in the world applying heldInput() every tick (recorded like any
+   * command) and nothing is delivered to it, until reattach() or leave(). False when there is no such connected player.
+   */
+  detach(playerId: number): boolean {
+    const p = this.players.get(playerId);
+    if (!p || p.member === null || this.closed) return false;
+    p.member = null;
+    p.inputs.suspend(heldInput(p.inputs.lastApplied));
+    return true;
+  }
+
+  /**
+   * Hands a player (held, or still connected on a link being replaced) to a new member: same player id, same character,
+   * no join or leave in the record. Null when the player is no longer in the room.
+   */
+  reattach(playerId: number, member: RoomMember): JoinResult | null {
+    const p = this.players.get(playerId);
+    if (!p || this.closed) return null;
+    p.member = member;
+    p.inputs.resume();
+    return { playerId, joinTick: this.sim.tick, firstInputTick: p.inputs.nextTickToApply };
   }
 
   /** Offers a validated command a player stamped for `tick`. Unknown players are ignored (their leave raced it). */
@@ -333,7 +375,7 @@ export class Room {
 
   private deliver(tick: number, events: readonly SimEvent[]): void {
     for (const e of events) if (e.type === 'bodyRemoved') this.sceneStatics.delete(e.bodyId); // its id may be reused
-    const members = [...this.players.values()];
+    const members = [...this.players.values()].filter((p): p is Player & { member: RoomMember } => p.member !== null);
     if (events.length > 0) for (const p of members) this.safely(p, () => p.member.deliverEvents(tick, events));
     this.snapshotAccumulator += this.opts.snapshotRateHz;
     if (this.snapshotAccumulator + 1e-9 < TICK_RATE_HZ) {
@@ -357,7 +399,7 @@ export class Room {
   }
 
   // A member that throws while taking a delivery is removed; the room and the other members carry on.
-  private safely(p: Player, fn: () => void): void {
+  private safely(p: Player & { member: RoomMember }, fn: () => void): void {
     try {
       fn();
     } catch (error) {
@@ -387,7 +429,7 @@ export class Room {
     this.players.clear();
     for (const p of members) {
       try {
-        p.member.roomClosed(reason);
+        p.member?.roomClosed(reason);
       } catch (error) {
         this.opts.logger.warn({ room: this.id, err: error }, 'member failed to take the close notice');
       }

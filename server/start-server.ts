@@ -6,8 +6,9 @@ import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { DEFAULT_SCENARIO, listScenarios } from '../scenarios/index.ts';
 import type { Clock } from '../shared/clock.ts';
-import { MAX_CLIENT_MESSAGE_BYTES } from '../shared/protocol/index.ts';
+import { ErrorCode, MAX_CLIENT_MESSAGE_BYTES } from '../shared/protocol/index.ts';
 import { resolveParams } from '../shared/sim/scenario.ts';
+import { createServerAccess, logAccess, type AccessOptions } from './access/access-setup.ts';
 import { SystemClock } from './clock.ts';
 import type { SessionLimits } from './client-session.ts';
 import { GameServer } from './game-server.ts';
@@ -15,6 +16,7 @@ import { createHttpServer } from './http-server.ts';
 import { createLogger, flushLogger, type Logger } from './logger.ts';
 import { createMetrics, renderMetrics, type ServerMetrics } from './metrics.ts';
 import { createRoomFactory, type ScenarioSource } from './room-factory.ts';
+import { RoomError } from './room.ts';
 import { createStaticHandler } from './static-files.ts';
 import { attachWsGateway } from './ws-gateway.ts';
 
@@ -23,7 +25,7 @@ const REPO_ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 export const DEFAULT_CLIENT_DIR = join(REPO_ROOT, 'dist', 'client');
 
 /** Options of startServer (the serve command's flags plus test hooks). */
-export interface StartServerOptions {
+export interface StartServerOptions extends AccessOptions {
   /** Port to listen on; 0 picks a free one. Default 8080. */
   port?: number;
   /** Interface to bind. Default 127.0.0.1. */
@@ -51,6 +53,8 @@ export interface StartServerOptions {
   scenarios?: ScenarioSource;
   /** Milliseconds between WebSocket keep-alive pings. Default 15000. */
   heartbeatMs?: number;
+  /** How long a player whose link dropped is held for a reconnect (ms). Default 30 000; 0: off. */
+  resumeGraceMs?: number;
 }
 
 /** A listening server. */
@@ -88,6 +92,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   const port = opts.port ?? 8080;
   const host = opts.host ?? '127.0.0.1';
   if (!Number.isInteger(port) || port < 0 || port > 65535) throw new Error(`port must be an integer in [0, 65535], got ${port}`);
+  const access = createServerAccess(opts, metrics, logger);
 
   const game = await GameServer.create({
     factory: createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null }),
@@ -103,6 +108,9 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     maxRooms: opts.maxRooms,
     emptyRoomGraceMs: opts.emptyRoomGraceMs,
     limits: opts.limits,
+    resumeGraceMs: opts.resumeGraceMs,
+    seats: access.seats,
+    requireSeat: access.requireSeat,
   });
 
   const staticFiles = createStaticHandler(opts.clientDir ?? DEFAULT_CLIENT_DIR);
@@ -118,8 +126,14 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
         const room = req.roomId !== undefined ? await game.rooms.resolve({ roomId: req.roomId, scenario: req.scenario, params: req.params }) : await game.rooms.resolve({ scenario: req.scenario, params: req.params });
         return room.info();
       },
+      reserveSeat: (roomId, req) => {
+        if (!game.rooms.get(roomId)) throw new RoomError(ErrorCode.RoomNotFound, `no room "${roomId}" is open`);
+        const seat = access.seats.issue(roomId, req.ttlSeconds === undefined ? undefined : req.ttlSeconds * 1000);
+        return { token: seat.token, roomId: seat.roomId, seatId: seat.seatId, expiresAt: new Date(seat.expiresAtMs).toISOString() };
+      },
       metrics: () => renderMetrics(metrics),
       staticFiles,
+      authorize: access.authorize,
     },
     (error) => logger.error({ err: error }, 'HTTP request failed'),
   );
@@ -128,6 +142,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     maxPayloadBytes: opts.limits?.maxMessageBytes ?? MAX_CLIENT_MESSAGE_BYTES,
     heartbeatMs: opts.heartbeatMs,
     refuse: () => game.refusal(),
+    checkUpgrade: access.checkUpgrade,
     onConnection: (conn) => {
       game.accept(conn);
     },
@@ -154,6 +169,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   const url = `http://${shownHost}:${address.port}/`;
   const wsUrl = `ws://${shownHost}:${address.port}/`;
   logger.info({ url, scenario: scenarioName, snapshotRateHz: game.snapshotRateHz, recordDir: opts.recordDir ?? null }, 'server listening');
+  logAccess(logger, host, access);
 
   let closing: Promise<void> | null = null;
   return {

@@ -4,6 +4,7 @@ import type { IncomingMessage, Server as HttpServer } from 'node:http';
 import type { Duplex } from 'node:stream';
 import { WebSocketServer, type RawData, type WebSocket } from 'ws';
 import type { Clock, TimerHandle } from '../shared/clock.ts';
+import { refuseUpgrade, type Refusal } from './access/refusal.ts';
 import { clampCloseReason, CloseCode, type ConnectionHandlers, type ServerConnection } from './connection.ts';
 
 /** Options of attachWsGateway. */
@@ -17,6 +18,8 @@ export interface WsGatewayOptions {
   onConnection(conn: ServerConnection, req: IncomingMessage): void;
   /** Returns a reason to refuse new sockets (shutting down, full), or null to accept. */
   refuse?(): string | null;
+  /** Access rules for this upgrade request (the Origin check): a refusal is answered instead of upgrading. */
+  checkUpgrade?(req: IncomingMessage): Refusal | null;
 }
 
 /** The running gateway. */
@@ -121,6 +124,11 @@ export function attachWsGateway(http: HttpServer, opts: WsGatewayOptions): WsGat
 
   const onUpgrade = (req: IncomingMessage, socket: Duplex, head: Buffer): void => {
     socket.on('error', () => socket.destroy());
+    const denied = opts.checkUpgrade?.(req) ?? null;
+    if (denied !== null) {
+      refuseUpgrade(socket, denied);
+      return;
+    }
     const refusal = closing ? 'server shutting down' : (opts.refuse?.() ?? null);
     if (refusal !== null) {
       socket.end(`HTTP/1.1 503 Service Unavailable\r\nContent-Type: text/plain\r\nConnection: close\r\n\r\n${refusal}\n`);

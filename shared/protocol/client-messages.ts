@@ -2,14 +2,21 @@
 // docs/protocol.md). The server only ever sees these after validation.ts has checked them.
 import type { InputCommand } from '../sim/input.ts';
 
-/** First message on a connection: protocol version, display name, and the room to join (null: the default room). */
+/**
+ * First message on a connection: protocol version, display name, the room to join (null: the default room), and
+ * optionally a seat token (servers that admit only reserved seats) and a resume token (take back a dropped player).
+ */
 export interface HelloMessage {
   type: 'hello';
   version: number;
   /** 1–32 characters after trimming, no control characters. */
   name: string;
-  /** Room id (letters, digits, '-', '_'), or null for the default room. */
+  /** Room id (letters, digits, '-', '_'), or null for the default room (or the room the token names). */
   room: string | null;
+  /** A seat token from `POST /api/rooms/:id/seats`. */
+  seatToken?: string;
+  /** The resume token of an earlier welcome: the server hands that player back instead of adding a new one. */
+  resumeToken?: string;
 }
 
 /** Commands for consecutive ticks firstTick, firstTick+1, …; the newest is last, the earlier ones are repeats. */

@@ -43,8 +43,15 @@ export function packValue(value: unknown): Uint8Array {
 /** Encodes a client→server message. */
 export function encodeClientMessage(m: ClientMessage): Uint8Array {
   switch (m.type) {
-    case 'hello':
-      return packr.pack([ClientOpcode.Hello, m.version, m.name, m.room]);
+    case 'hello': {
+      // The options map is sent only when there is an option, so a hello without tokens keeps version 1's shape
+      // and an older server can still answer it with version-mismatch.
+      const options: { seatToken?: string; resumeToken?: string } = {};
+      if (m.seatToken !== undefined) options.seatToken = m.seatToken;
+      if (m.resumeToken !== undefined) options.resumeToken = m.resumeToken;
+      const base = [ClientOpcode.Hello, m.version, m.name, m.room];
+      return packr.pack(m.seatToken !== undefined || m.resumeToken !== undefined ? [...base, options] : base);
+    }
     case 'input':
       return packr.pack([ClientOpcode.Input, m.firstTick, m.commands.map((c) => [c.moveX, c.moveZ, c.yaw, c.pitch, c.buttons])]);
     case 'ack':
@@ -88,6 +95,9 @@ export function encodeServerMessage(m: ServerMessage): Uint8Array {
           snapshotFormat: { positionSteps: [...m.snapshotFormat.positionSteps], rotationBits: m.snapshotFormat.rotationBits },
           staticBodies: packDescriptors(m.staticBodies),
           dynamicBodies: packDescriptors(m.dynamicBodies),
+          resumeToken: m.resumeToken,
+          resumeGraceMs: m.resumeGraceMs,
+          resumed: m.resumed,
         },
       ]);
     case 'pong':

@@ -19,3 +19,7 @@ export const MAX_TICK = 0xffff_ffff;
 export const MAX_CLIENT_TIME_MS = 1e15;
 /** Snapshots the server remembers per client as possible baselines (and the client keeps decoded). */
 export const SNAPSHOT_HISTORY_SIZE = 64;
+/** Longest seat or resume token in a hello. */
+export const MAX_TOKEN_LENGTH = 256;
+/** Seat and resume tokens: URL-safe base64 characters and dots only. */
+export const TOKEN_PATTERN = /^[A-Za-z0-9_.-]{1,256}$/;

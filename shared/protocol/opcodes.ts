@@ -1,8 +1,11 @@
 // Wire constants both ends import: the protocol version, opcodes by direction, error codes and bye reasons.
 // Every frame is a msgpack array whose first element is one of these opcodes (see docs/protocol.md).
 
-/** Bumped on any incompatible change to a message or the snapshot bit layout; hello and welcome must agree. */
-export const PROTOCOL_VERSION = 1;
+/**
+ * Bumped on any incompatible change to a message or the snapshot bit layout; hello and welcome must agree.
+ * 2: hello's optional options map (seat and resume tokens); the welcome's resume fields; seat/resume codes.
+ */
+export const PROTOCOL_VERSION = 2;
 
 /** Opcodes of messages a client sends to the server (1–15). */
 export const ClientOpcode = {
@@ -44,6 +47,12 @@ export const ErrorCode = {
   ServerFull: 'server-full',
   /** Too many messages or inputs per second. */
   RateLimited: 'rate-limited',
+  /** The server admits only players with a seat token (`--require-seat`) and the hello carried none. */
+  SeatRequired: 'seat-required',
+  /** The hello's seat token is forged, expired, already used or for another room. */
+  SeatRefused: 'seat-refused',
+  /** The hello's resume token is unknown, already used or past its grace window: the client joins as a new player. */
+  ResumeRefused: 'resume-refused',
   Internal: 'internal',
 } as const;
 export type ErrorCode = (typeof ErrorCode)[keyof typeof ErrorCode];
@@ -60,6 +69,10 @@ export const ByeReason = {
   RoomFull: 'room-full',
   ServerFull: 'server-full',
   RoomNotFound: 'room-not-found',
+  /** No valid seat token (the error before it says which: `seat-required` or `seat-refused`). */
+  SeatRefused: 'seat-refused',
+  /** Another connection resumed this player with its resume token; this one is no longer in the room. */
+  Replaced: 'replaced',
   ClientBye: 'client-bye',
 } as const;
 export type ByeReason = (typeof ByeReason)[keyof typeof ByeReason];

@@ -3,11 +3,15 @@
 import type { SimEvent } from '../sim/types.ts';
 import { toBytes, unpackFrame } from './codec.ts';
 import { unpackDescriptors } from './descriptor-codec.ts';
-import { ServerOpcode, type ByeReason, type ErrorCode } from './opcodes.ts';
+import { MAX_TOKEN_LENGTH, TOKEN_PATTERN } from './limits.ts';
+import { PROTOCOL_VERSION, ServerOpcode, type ByeReason, type ErrorCode } from './opcodes.ts';
 import type { ScenarioInfo, ServerMessage, WelcomeMessage } from './server-messages.ts';
 
-/** A decoded server message, or why it could not be decoded. */
-export type ServerDecodeResult = { ok: true; message: ServerMessage } | { ok: false; error: string };
+/**
+ * A decoded server message, or why it could not be decoded; `serverVersion` is set when the frame is a welcome of
+ * another protocol version (its other fields are not read: their shape may differ).
+ */
+export type ServerDecodeResult = { ok: true; message: ServerMessage } | { ok: false; error: string; serverVersion?: number };
 
 class DecodeError extends Error {}
 
@@ -31,6 +35,16 @@ function int(v: unknown, what: string, min = 0): number {
 
 function str(v: unknown, what: string): string {
   need(typeof v === 'string', `${what} must be a string`);
+  return v;
+}
+
+function bool(v: unknown, what: string): boolean {
+  need(typeof v === 'boolean', `${what} must be true or false`);
+  return v;
+}
+
+function token(v: unknown, what: string): string {
+  need(typeof v === 'string' && TOKEN_PATTERN.test(v), `${what} must be a token of 1-${MAX_TOKEN_LENGTH} characters of A-Z a-z 0-9 _ . -`);
   return v;
 }
 
@@ -70,6 +84,9 @@ function decodeWelcome(v: unknown): WelcomeMessage {
     snapshotFormat: { positionSteps, rotationBits: int(fmt.rotationBits, 'welcome.snapshotFormat.rotationBits') },
     staticBodies: unpackDescriptors(v.staticBodies, 'welcome.staticBodies'),
     dynamicBodies: unpackDescriptors(v.dynamicBodies, 'welcome.dynamicBodies'),
+    resumeToken: v.resumeToken === null ? null : token(v.resumeToken, 'welcome.resumeToken'),
+    resumeGraceMs: int(v.resumeGraceMs, 'welcome.resumeGraceMs'),
+    resumed: bool(v.resumed, 'welcome.resumed'),
   };
 }
 
@@ -144,6 +161,13 @@ function decode(value: unknown): ServerMessage {
   }
 }
 
+/** The protocolVersion of a welcome frame when it is an integer other than ours, else null. */
+function foreignWelcomeVersion(value: unknown): number | null {
+  if (!Array.isArray(value) || value[0] !== ServerOpcode.Welcome || !isObject(value[1])) return null;
+  const v = value[1].protocolVersion;
+  return typeof v === 'number' && Number.isInteger(v) && v !== PROTOCOL_VERSION ? v : null;
+}
+
 /** Decodes one server frame; malformed data yields { ok: false, error } and never throws. */
 export function decodeServerMessage(data: unknown): ServerDecodeResult {
   const bytes = toBytes(data);
@@ -154,6 +178,8 @@ export function decodeServerMessage(data: unknown): ServerDecodeResult {
   } catch (e) {
     return { ok: false, error: `not a msgpack value: ${(e as Error).message.slice(0, 120)}` };
   }
+  const foreign = foreignWelcomeVersion(value);
+  if (foreign !== null) return { ok: false, error: `the server speaks protocol ${foreign}, this client ${PROTOCOL_VERSION}`, serverVersion: foreign };
   try {
     return { ok: true, message: decode(value) };
   } catch (e) {

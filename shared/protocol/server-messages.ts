@@ -31,6 +31,12 @@ export interface WelcomeMessage {
   staticBodies: BodyDescriptor[];
   /** Descriptors of the non-static bodies alive now (snapshots only add descriptors for later spawns). */
   dynamicBodies: BodyDescriptor[];
+  /** Secret that lets a new connection take this player back after a drop (single use; null: resume is off). */
+  resumeToken: string | null;
+  /** How long (ms) the server holds this player after its connection drops without a bye (0: not at all). */
+  resumeGraceMs: number;
+  /** True when this welcome handed back a held player (same player id and character) instead of a new one. */
+  resumed: boolean;
 }
 
 /** Answer to ping. */

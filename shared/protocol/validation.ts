@@ -1,10 +1,19 @@
 // Checks every client→server frame: size, msgpack well-formedness, opcode, arity, field types and ranges, finite
 // numbers, and each input command through the one validator (validateInputCommand). Never throws.
 import { validateInputCommand, type InputCommand } from '../sim/input.ts';
-import type { ClientMessage } from './client-messages.ts';
+import type { ClientMessage, HelloMessage } from './client-messages.ts';
 import { toBytes, unpackFrame } from './codec.ts';
-import { MAX_CLIENT_MESSAGE_BYTES, MAX_CLIENT_TIME_MS, MAX_INPUT_COMMANDS_PER_MESSAGE, MAX_NAME_LENGTH, MAX_TICK, ROOM_ID_PATTERN } from './limits.ts';
-import { ClientOpcode, ErrorCode } from './opcodes.ts';
+import {
+  MAX_CLIENT_MESSAGE_BYTES,
+  MAX_CLIENT_TIME_MS,
+  MAX_INPUT_COMMANDS_PER_MESSAGE,
+  MAX_NAME_LENGTH,
+  MAX_TICK,
+  MAX_TOKEN_LENGTH,
+  ROOM_ID_PATTERN,
+  TOKEN_PATTERN,
+} from './limits.ts';
+import { ClientOpcode, ErrorCode, PROTOCOL_VERSION } from './opcodes.ts';
 
 /** A checked client message, or why it was refused (an ErrorCode and a sentence naming the field). */
 export type ClientDecodeResult =
@@ -46,6 +55,55 @@ function typeOf(v: unknown): string {
   if (Array.isArray(v)) return 'array';
   if (v instanceof Uint8Array) return 'binary';
   return typeof v;
+}
+
+/** A short description of a client value for error texts; never calls the value's own conversions. */
+function shown(v: unknown): string {
+  if (typeof v === 'number') return Number.isFinite(v) || Number.isNaN(v) ? `${v}` : v > 0 ? 'Infinity' : '-Infinity';
+  if (typeof v === 'string') return JSON.stringify(v.length > 40 ? `${v.slice(0, 40)}…` : v);
+  return typeOf(v);
+}
+
+/** Whether v is a msgpack map decoded as a plain object (not an array, binary or anything with another prototype). */
+function isPlainMap(v: unknown): v is Record<string, unknown> {
+  if (v === null || typeof v !== 'object' || Array.isArray(v) || ArrayBuffer.isView(v)) return false;
+  const proto: unknown = Object.getPrototypeOf(v);
+  return proto === Object.prototype || proto === null;
+}
+
+const HELLO_OPTIONS = ['seatToken', 'resumeToken'] as const;
+
+/**
+ * hello: [1, version, name, room] or [1, version, name, room, {seatToken?, resumeToken?}]. The version is checked
+ * first, so a client of any other version gets version-mismatch whatever the shape of the rest of its hello.
+ */
+function decodeHello(fields: unknown[]): ClientDecodeResult {
+  const version = fields[1];
+  if (typeof version !== 'number' || !Number.isInteger(version) || version < 0 || version > 0xffff) return bad(`hello.version must be an integer in [0, 65535], got ${shown(version)}`);
+  if (version !== PROTOCOL_VERSION) {
+    return bad(`this server speaks protocol ${PROTOCOL_VERSION} and the client sent protocol ${version}: use a client built for protocol ${PROTOCOL_VERSION}`, ErrorCode.VersionMismatch);
+  }
+  if (fields.length !== 4 && fields.length !== 5) return bad(`hello must have 3 or 4 fields, got ${fields.length - 1}`);
+  const name = checkPlayerName(fields[2]);
+  if (!name.ok) return bad(`hello.${name.error}`);
+  if (fields[3] === undefined) return bad('hello.room must be a room id or null');
+  const room = checkRoomId(fields[3]);
+  if (!room.ok) return bad(`hello.${room.error}`);
+  const message: HelloMessage = { type: 'hello', version, name: name.name, room: room.room };
+  const options = fields[4];
+  if (options !== undefined && options !== null) {
+    if (!isPlainMap(options)) return bad(`hello.options must be a map {seatToken?, resumeToken?}, got ${typeOf(options)}`);
+    for (const key of Object.keys(options)) {
+      if (!(HELLO_OPTIONS as readonly string[]).includes(key)) return bad(`hello.options has no field ${shown(key)} (known: ${HELLO_OPTIONS.join(', ')})`);
+    }
+    for (const key of HELLO_OPTIONS) {
+      if (!Object.hasOwn(options, key)) continue;
+      const token: unknown = options[key];
+      if (typeof token !== 'string' || !TOKEN_PATTERN.test(token)) return bad(`hello.options.${key} must be 1-${MAX_TOKEN_LENGTH} characters of A-Z a-z 0-9 _ . -, got ${shown(token)}`);
+      message[key] = token;
+    }
+  }
+  return { ok: true, message, clampedCommands: 0 };
 }
 
 function arity(fields: unknown[], n: number, name: string): Failure | null {
@@ -90,18 +148,8 @@ export function decodeClientMessage(data: unknown, maxBytes: number = MAX_CLIENT
   if (!Array.isArray(value) || value.length === 0) return bad(`message must be an array [opcode, ...fields], got ${typeOf(value)}`);
   const op = value[0];
   switch (op) {
-    case ClientOpcode.Hello: {
-      const wrong = arity(value, 4, 'hello');
-      if (wrong) return wrong;
-      const [, version, rawName, rawRoom] = value;
-      if (typeof version !== 'number' || !Number.isInteger(version) || version < 0 || version > 0xffff) return bad(`hello.version must be an integer, got ${String(version)}`);
-      const name = checkPlayerName(rawName);
-      if (!name.ok) return bad(`hello.${name.error}`);
-      if (rawRoom === undefined) return bad('hello.room must be a room id or null');
-      const room = checkRoomId(rawRoom);
-      if (!room.ok) return bad(`hello.${room.error}`);
-      return { ok: true, message: { type: 'hello', version, name: name.name, room: room.room }, clampedCommands: 0 };
-    }
+    case ClientOpcode.Hello:
+      return decodeHello(value);
     case ClientOpcode.Input:
       return decodeInput(value);
     case ClientOpcode.SnapshotAck: {

@@ -5,7 +5,8 @@ import { describe, expect, it } from 'vitest';
 import { connect, type NetClient, type NetClientOptions } from '../../sdk/client.ts';
 import { MemoryNetwork } from '../../sdk/memory-transport.ts';
 import { ManualClock } from '../../shared/clock.ts';
-import { ByeReason, ErrorCode } from '../../shared/protocol/opcodes.ts';
+import { ByeReason, ErrorCode, PROTOCOL_VERSION } from '../../shared/protocol/opcodes.ts';
+import type { WelcomeMessage } from '../../shared/protocol/server-messages.ts';
 import { framesEqual } from '../../shared/protocol/snapshot-frame.ts';
 import { NEUTRAL_INPUT } from '../../shared/sim/input.ts';
 import type { SimEvent } from '../../shared/sim/types.ts';
@@ -165,21 +166,25 @@ describe('client', () => {
     client.close();
   });
 
-  it('reconnects with backoff after the link drops and rejoins its room', async () => {
+  it('reconnects with backoff after the link drops and takes its player back with the resume token', async () => {
     const w = world();
     const client = w.open();
     w.clock.advance(500);
     const first = client.playerId;
     const attempts: Array<{ attempt: number; delayMs: number }> = [];
     client.on('reconnecting', (r) => attempts.push({ attempt: r.attempt, delayMs: r.delayMs }));
-    const rewelcomed = new Promise<number>((resolve) => client.on('welcome', (wm) => resolve(wm.playerId)));
+    const firstToken = client.resumeToken;
+    expect(firstToken).toMatch(/^fakeResume/);
+    const rewelcomed = new Promise<WelcomeMessage>((resolve) => client.on('welcome', resolve));
     w.net.dropAll();
     w.clock.advance(1);
     expect(client.state).toBe('reconnecting');
     expect(attempts).toEqual([{ attempt: 1, delayMs: 250 }]);
     w.clock.advance(500);
     const second = await rewelcomed;
-    expect(second).not.toBe(first);
+    expect(w.server.sessions.at(-1)!.hello?.resumeToken).toBe(firstToken);
+    expect(second).toMatchObject({ playerId: first, resumed: true });
+    expect(client.resumeToken).not.toBe(firstToken);
     expect(client.state).toBe('connected');
     expect(client.stats().reconnects).toBe(1);
     expect(w.server.sessions.at(-1)!.room).toBe('r1');
@@ -242,7 +247,7 @@ describe('client', () => {
     const v = world({ server: { protocolVersion: 99 } });
     const old = v.open();
     v.clock.advance(1000);
-    expect(old.closed).toEqual({ reason: 'version-mismatch', detail: 'version-mismatch: server speaks protocol 99, this client 1' });
+    expect(old.closed).toEqual({ reason: 'version-mismatch', detail: `version-mismatch: the server speaks protocol 99 and this client ${PROTOCOL_VERSION}: use a client built for protocol 99` });
     expect(v.net.connectionCount).toBe(1);
   });
 

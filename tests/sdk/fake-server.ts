@@ -1,12 +1,14 @@
 // Test helper: a small protocol-exact server on a MemoryNetwork and a ManualClock. It ticks at 60 Hz, buffers each
 // player's inputs by tick (repeating the last one when none arrived, counting misses), moves one character per
-// player from its inputs plus a few scripted bodies, and sends per-client delta snapshots, pongs and events.
+// player from its inputs plus a few scripted bodies, and sends per-client delta snapshots, pongs and events. Welcomes
+// carry resume tokens; a hello with a known one gets the same player id back (resumed).
 import type { MemoryNetwork, MemoryPeer } from '../../sdk/memory-transport.ts';
 import type { ManualClock } from '../../shared/clock.ts';
 import { BodyFlag } from '../../shared/physics-data/body-state.ts';
 import { encodeServerMessage } from '../../shared/protocol/codec.ts';
 import { ByeReason, ErrorCode, PROTOCOL_VERSION } from '../../shared/protocol/opcodes.ts';
 import { createSnapshotFormat, snapshotFormatSpec } from '../../shared/protocol/quantization.ts';
+import type { HelloMessage } from '../../shared/protocol/client-messages.ts';
 import type { ServerMessage } from '../../shared/protocol/server-messages.ts';
 import { quantizeFrame, type QuantizedFrame } from '../../shared/protocol/snapshot-frame.ts';
 import { SnapshotEncoder } from '../../shared/protocol/snapshot-stream.ts';
@@ -38,6 +40,8 @@ export interface FakeSession {
   onTime: Set<number>;
   x: number;
   byeReceived: boolean;
+  /** The session's hello, once received. */
+  hello: HelloMessage | null;
 }
 
 /** Options of FakeServer. */
@@ -63,6 +67,9 @@ export class FakeServer {
   private readonly o: Required<FakeServerOptions>;
   private readonly format = createSnapshotFormat(BOUNDS);
   private nextPlayer = 1;
+  private nextToken = 1;
+  /** Live resume tokens → player id (single use). */
+  private readonly resumeTokens = new Map<string, number>();
   private startMs = 0;
   private running = false;
   private readonly eventsQueue: SimEvent[] = [];
@@ -140,6 +147,7 @@ export class FakeServer {
       onTime: new Set(),
       x: 0,
       byeReceived: false,
+      hello: null,
     };
     this.sessions.push(s);
     peer.onMessage((data) => this.onMessage(s, data));
@@ -169,7 +177,20 @@ export class FakeServer {
           this.kick(s, this.o.refuseWith.byeReason, 'refused');
           return;
         }
-        s.playerId = this.nextPlayer++;
+        s.hello = m;
+        let resumed = false;
+        const claimed = m.resumeToken === undefined ? undefined : this.resumeTokens.get(m.resumeToken);
+        if (m.resumeToken !== undefined) this.resumeTokens.delete(m.resumeToken);
+        if (claimed !== undefined) {
+          resumed = true;
+          s.playerId = claimed;
+          for (const other of this.sessions) if (other !== s && other.playerId === claimed) other.playerId = null;
+        } else {
+          if (m.resumeToken !== undefined) this.send(s, { type: 'error', code: ErrorCode.ResumeRefused, message: 'cannot resume: unknown token; joining as a new player' });
+          s.playerId = this.nextPlayer++;
+        }
+        const resumeToken = `fakeResume${this.nextToken++}`;
+        this.resumeTokens.set(resumeToken, s.playerId);
         s.room = m.room;
         s.name = m.name;
         const dynamicBodies = Array.from({ length: this.o.movingBodies }, (_, i) => this.describe(i + 1));
@@ -186,8 +207,11 @@ export class FakeServer {
           snapshotFormat: snapshotFormatSpec(this.format),
           staticBodies: [{ id: 0, shape: { kind: 'box', halfExtents: { x: 100, y: 0.5, z: 100 } }, color: [0.2, 0.2, 0.2], motion: 'static', hidden: false, position: { x: 0, y: -0.5, z: 0 }, rotation: { x: 0, y: 0, z: 0, w: 1 } }],
           dynamicBodies,
+          resumeToken,
+          resumeGraceMs: 30_000,
+          resumed,
         });
-        this.emit({ type: 'playerJoined', tick: this.tick, playerId: s.playerId, name: m.name });
+        if (!resumed) this.emit({ type: 'playerJoined', tick: this.tick, playerId: s.playerId, name: m.name });
         return;
       }
       case 'input':

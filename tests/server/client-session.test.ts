@@ -1,7 +1,7 @@
 // Tests for server/client-session.ts: every kind of bad client traffic gets an error or a disconnect with a reason,
 // the other players' world is untouched (identical hash sequence), slow readers get snapshots skipped, not queued.
 import { afterEach, describe, expect, it } from 'vitest';
-import { ByeReason, ErrorCode, packValue } from '../../shared/protocol/index.ts';
+import { ByeReason, ClientOpcode, ErrorCode, packValue, PROTOCOL_VERSION } from '../../shared/protocol/index.ts';
 import { Button, NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input.ts';
 import { startHarness, type Harness, type TestClient } from './harness.ts';
 import { stripScenario } from './test-scenarios.ts';
@@ -142,9 +142,14 @@ describe('ClientSession', () => {
     const silent = h.connect();
     const old = h.connect();
     old.send({ type: 'hello', version: 999, name: 'old', room: null });
+    const v1 = h.connect();
+    v1.end.send(packValue([ClientOpcode.Hello, 1, 'v1', null])); // a version-1 client's hello, byte for byte
     h.ticks(40);
     expect(byes(silent)[0]?.reason).toBe(ByeReason.Timeout);
     expect(byes(old)[0]?.reason).toBe(ByeReason.VersionMismatch);
+    expect(errorCodes(v1)).toEqual([ErrorCode.VersionMismatch]);
+    expect(byes(v1)[0]).toMatchObject({ reason: ByeReason.VersionMismatch, message: expect.stringContaining(`speaks protocol ${PROTOCOL_VERSION} and the client sent protocol 1`) });
+    expect(v1.closed?.code).toBe(1008);
   });
 
   it('refuses an unknown room with a reason', async () => {

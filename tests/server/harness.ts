@@ -1,6 +1,7 @@
 // In-process server harness for tests: a GameServer on a ManualClock with real Simulations, and protocol-level test
 // clients over its MemoryNetwork that decode every server message and snapshot (acking them) exactly as a client would.
 import '../../server/physics-node.ts';
+import type { SeatTokens } from '../../server/access/seat-tokens.ts';
 import type { SessionLimits } from '../../server/client-session.ts';
 import { GameServer } from '../../server/game-server.ts';
 import { silentLogger } from '../../server/logger.ts';
@@ -49,6 +50,10 @@ export interface HarnessOptions {
   maxRooms?: number;
   maxConnections?: number;
   maxPayloadBytes?: number;
+  /** Reconnect grace window (ms); default the server's (30 s); 0 turns resume off. */
+  resumeGraceMs?: number;
+  seats?: SeatTokens | null;
+  requireSeat?: boolean;
 }
 
 /** A protocol-level client: records every decoded message; decodes and acks snapshots. */
@@ -93,8 +98,13 @@ export class TestClient {
     this.end.send(encodeClientMessage(m));
   }
 
-  hello(name: string, room: string | null = null): void {
-    this.send({ type: 'hello', version: PROTOCOL_VERSION, name, room });
+  hello(name: string, room: string | null = null, tokens: { seatToken?: string; resumeToken?: string } = {}): void {
+    this.send({ type: 'hello', version: PROTOCOL_VERSION, name, room, ...tokens });
+  }
+
+  /** Cuts the link without a bye, as a network failure does (the server sees close code 1006). */
+  drop(): void {
+    this.end.close(1006, 'link dropped');
   }
 
   /** Sends commands for consecutive ticks from firstTick. */
@@ -155,6 +165,9 @@ export async function startHarness(opts: HarnessOptions): Promise<Harness> {
     maxClientsPerRoom: opts.maxClientsPerRoom,
     maxRooms: opts.maxRooms,
     maxConnections: opts.maxConnections,
+    resumeGraceMs: opts.resumeGraceMs,
+    seats: opts.seats,
+    requireSeat: opts.requireSeat,
   });
   const histories = new Map<string, { records: TickInputRecord[]; hashes: string[] }>();
   const watch = (room: Room): void => {

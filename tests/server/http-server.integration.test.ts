@@ -24,6 +24,10 @@ async function serve(over: Partial<HttpApi> = {}): Promise<string> {
       if (req.scenario === 'full') throw new RoomError(ErrorCode.ServerFull, 'the server already runs its limit of 6 rooms');
       return { ...room, id: req.roomId ?? 'new-1', scenario: req.scenario };
     },
+    reserveSeat: (roomId, req) => {
+      if (roomId !== room.id) throw new RoomError(ErrorCode.RoomNotFound, `no room "${roomId}" is open`);
+      return { token: `s1.${roomId}.seat`, roomId, seatId: 'seat', expiresAt: new Date((req.ttlSeconds ?? 60) * 1000).toISOString() };
+    },
     metrics: async () => ({ body: 'taos_x 1\n', contentType: 'text/plain; version=0.0.4' }),
     staticFiles: async (req, res) => {
       if (req.url !== '/' || req.method !== 'GET') return false;

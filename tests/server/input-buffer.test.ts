@@ -1,4 +1,4 @@
-// Tests for server/input-buffer.ts: per-tick storage, repeat-last, late/too-far drops, redundancy.
+// Tests for server/input-buffer.ts: per-tick storage, repeat-last, late/too-far drops, redundancy, suspend/resume.
 import { describe, expect, it } from 'vitest';
 import { InputBuffer, OfferResult } from '../../server/input-buffer.ts';
 import { NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input.ts';
@@ -63,5 +63,23 @@ describe('InputBuffer', () => {
   it('refuses to skip ticks', () => {
     const buf = new InputBuffer(5);
     expect(() => buf.take(6)).toThrow(/expected tick 5/);
+  });
+
+  it('applies the hold command while suspended, drops what was waiting, and takes new commands after resume', () => {
+    const buf = new InputBuffer(0);
+    buf.offer(0, cmd(50));
+    buf.offer(1, cmd(60));
+    buf.offer(2, cmd(70));
+    expect(buf.take(0).command).toEqual(cmd(50));
+    const hold = { ...NEUTRAL_INPUT, yaw: 1234 };
+    buf.suspend(hold);
+    expect(buf.size).toBe(0);
+    expect(buf.take(1)).toEqual({ command: hold, repeated: false });
+    expect(buf.take(2)).toEqual({ command: hold, repeated: false });
+    expect(buf.stats).toMatchObject({ held: 2, repeated: 0 });
+    buf.resume();
+    buf.offer(4, cmd(-20));
+    expect(buf.take(3)).toEqual({ command: hold, repeated: true });
+    expect(buf.take(4)).toEqual({ command: cmd(-20), repeated: false });
   });
 });

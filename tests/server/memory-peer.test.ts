@@ -1,8 +1,10 @@
 // Tests for server/memory-peer.ts: the client library's NetClient over its MemoryNetwork (latency, jitter) plays
-// against the in-process server on the manual clock: joining, moving, seeing each other, server byes.
+// against the in-process server on the manual clock: joining, moving, seeing each other, server byes, and
+// reconnecting after a dropped network with the resume token (taken back, or refused once the window is over).
 import { afterEach, describe, expect, it } from 'vitest';
 import { connect, type NetClient } from '../../sdk/index.ts';
 import { NEUTRAL_INPUT } from '../../shared/sim/input.ts';
+import { memoryPeerConnection } from '../../server/memory-peer.ts';
 import { MEMORY_URL, startHarness, type Harness } from './harness.ts';
 import { stripScenario } from './test-scenarios.ts';
 
@@ -54,5 +56,34 @@ describe('memory-peer (client library against the server)', () => {
     expect(a.closed?.reason).toBe('server-shutdown');
     expect(a.closed?.detail).toMatch(/maintenance/);
     h = null;
+  });
+
+  it('takes its player back after the network drops, and carries on as a new player once the grace window is over', async () => {
+    h = await startHarness({ scenarios: [stripScenario], resumeGraceMs: 3000 });
+    const net = h.network({ latencyMs: 10 });
+    const a = connect(MEMORY_URL, { name: 'ann', transport: net.transport, clock: h.clock, reconnect: { baseDelayMs: 200, maxDelayMs: 5000 }, random: () => 0.5 });
+    await h.settle(() => a.state === 'connected');
+    const first = a.playerId!;
+    const welcomes: Array<{ playerId: number; resumed: boolean }> = [];
+    const refusals: string[] = [];
+    a.on('welcome', (w) => welcomes.push({ playerId: w.playerId, resumed: w.resumed }));
+    a.on('serverError', (e) => refusals.push(`${e.code}: ${e.message}`));
+    net.dropAll();
+    await h.settle(() => welcomes.length === 1);
+    expect(welcomes).toEqual([{ playerId: first, resumed: true }]);
+    expect(refusals).toEqual([]);
+
+    // Down for longer than the window: the held player leaves, the reconnect's token is refused, a new player joins.
+    net.unlisten(MEMORY_URL);
+    net.dropAll();
+    h.clock.advance(4000);
+    net.listen(MEMORY_URL, (peer) => h!.server.accept(memoryPeerConnection(peer))); // the server is reachable again
+    await h.settle(() => welcomes.length === 2, 20_000);
+    expect(welcomes[1].resumed).toBe(false);
+    expect(welcomes[1].playerId).not.toBe(first);
+    expect(refusals).toEqual([expect.stringMatching(/^resume-refused: cannot resume: the resume token expired/)]);
+    expect(a.state).toBe('connected');
+    expect(h.room().hasPlayer(first)).toBe(false);
+    a.close();
   });
 });

@@ -76,7 +76,7 @@ describe('RoomManager', () => {
     await h.settle(() => c.closed !== null);
     expect(c.ofType('error')[0]?.code).toBe(ErrorCode.RoomNotFound);
     const d = h.connect();
-    d.send({ type: 'hello', version: 1, name: 'dan', room: 'test-strip' });
+    d.hello('dan', 'test-strip');
     await h.settle(() => d.closed !== null);
     expect(d.ofType('error')[0]).toMatchObject({ code: ErrorCode.ServerFull });
     expect(d.ofType('bye')[0]?.reason).toBe(ByeReason.ServerFull);

@@ -1,5 +1,5 @@
 // Tests for server/room.ts with a recording stand-in simulation: the exact records stepped (joins, leaves, inputs
-// applied or repeated), event and frame delivery, limits, pausing when empty, failure isolation.
+// applied or repeated), event and frame delivery, limits, pausing when empty, failure isolation, held players.
 import { describe, expect, it } from 'vitest';
 import { OfferResult } from '../../server/input-buffer.ts';
 import { silentLogger } from '../../server/logger.ts';
@@ -228,5 +228,38 @@ describe('Room', () => {
     expect(sim.destroyed).toBe(true);
     expect(reasons).toHaveLength(1);
     expect(() => room.join(new Member(), 'late')).toThrow(/closed/);
+  });
+
+  it('keeps a detached player in the records with the held input and no deliveries until it is reattached', () => {
+    const { room, sim, clock } = makeRoom();
+    const a = new Member();
+    const b = new Member();
+    room.join(a, 'ann');
+    room.join(b, 'bob');
+    room.offerInput(1, 1, { moveX: 90, moveZ: -40, yaw: 777, pitch: -300, buttons: 3 });
+    clock.advance(2 * TICK_MS);
+    const framesBefore = a.frames.length;
+    const detachedAt = sim.tick;
+    expect(room.detach(1)).toBe(true);
+    expect(room.detach(1)).toBe(false);
+    room.offerInput(1, 3, cmd(127)); // nobody may speak for a held player; even if something did, it is not applied
+    clock.advance(4 * TICK_MS);
+    const held = { moveX: 0, moveZ: 0, yaw: 777, pitch: -300, buttons: 0 };
+    expect(sim.records.length).toBe(detachedAt + 4);
+    for (const r of sim.records.slice(detachedAt)) expect(r.commands.find((c) => c.playerId === 1)?.input).toEqual(held);
+    expect(a.frames.length).toBe(framesBefore);
+    expect(room.clientCount).toBe(2);
+    expect(room.heldCount).toBe(1);
+    const c = new Member();
+    const back = room.reattach(1, c);
+    const backAt = sim.tick;
+    expect(back).toEqual({ playerId: 1, joinTick: backAt, firstInputTick: backAt });
+    room.offerInput(1, backAt + 1, cmd(10));
+    clock.advance(2 * TICK_MS);
+    expect(sim.records[backAt + 1].commands.find((x) => x.playerId === 1)?.input).toEqual(cmd(10));
+    expect(c.frames.length).toBeGreaterThan(0);
+    expect(sim.records.every((r) => r.leaves.length === 0 && r.joins.every((j) => j.playerId !== 1 || r.tick === 0))).toBe(true);
+    expect(room.heldCount).toBe(0);
+    expect(room.reattach(99, c)).toBeNull();
   });
 });

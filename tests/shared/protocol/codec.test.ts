@@ -14,6 +14,8 @@ describe('codec', () => {
     const messages: ClientMessage[] = [
       { type: 'hello', version: PROTOCOL_VERSION, name: 'Ada', room: 'lobby-1' },
       { type: 'hello', version: PROTOCOL_VERSION, name: 'Bob', room: null },
+      { type: 'hello', version: PROTOCOL_VERSION, name: 'Cy', room: 'arena', seatToken: 's1.arena.AAAAAAAAAAAAAAAAAAAAAA.1.x' },
+      { type: 'hello', version: PROTOCOL_VERSION, name: 'Di', room: null, resumeToken: 'abc_DEF-123', seatToken: 'seat.token' },
       { type: 'input', firstTick: 500, commands: [{ moveX: -127, moveZ: 127, yaw: 65535, pitch: -16384, buttons: 15 }, { moveX: 0, moveZ: 3, yaw: 1, pitch: 16384, buttons: 0 }] },
       { type: 'ack', tick: 4_000_000_000 },
       { type: 'ping', clientTimeMs: 12345.678 },
@@ -28,6 +30,7 @@ describe('codec', () => {
   it('round-trips every server message through the client-side decoder', () => {
     const messages: ServerMessage[] = [
       sampleWelcome,
+      { ...sampleWelcome, resumeToken: null, resumeGraceMs: 0, resumed: true },
       { type: 'pong', clientTimeMs: 99.5, serverTick: 77, serverTimeMs: 123456.25, missedInputTicks: 2 },
       { type: 'snapshot', bytes: new Uint8Array([1, 2, 3, 250]), descriptors: [] },
       { type: 'snapshot', bytes: new Uint8Array([9]), descriptors: sampleWelcome.dynamicBodies },
@@ -51,6 +54,11 @@ describe('codec', () => {
       expect(r.ok).toBe(true);
       if (r.ok) expect(r.message).toEqual(m);
     }
+  });
+
+  it('sends a hello without tokens in version 1\'s four-element shape, and tokens in an options map', () => {
+    expect(unpackFrame(encodeClientMessage({ type: 'hello', version: PROTOCOL_VERSION, name: 'Ada', room: null }))).toEqual([ClientOpcode.Hello, PROTOCOL_VERSION, 'Ada', null]);
+    expect(unpackFrame(encodeClientMessage({ type: 'hello', version: PROTOCOL_VERSION, name: 'Ada', room: null, resumeToken: 'tok' }))).toEqual([ClientOpcode.Hello, PROTOCOL_VERSION, 'Ada', null, { resumeToken: 'tok' }]);
   });
 
   it('frames messages as msgpack arrays led by their opcode', () => {

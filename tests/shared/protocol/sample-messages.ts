@@ -15,4 +15,7 @@ export const sampleWelcome: WelcomeMessage = {
   snapshotFormat: { positionSteps: [50000, 25000, 50000], rotationBits: 10 },
   staticBodies: [{ id: 0, shape: { kind: 'box', halfExtents: { x: 50, y: 0.5, z: 50 } }, color: [0.3, 0.3, 0.3], motion: 'static', hidden: false, position: { x: 0, y: -0.5, z: 0 }, rotation: { x: 0, y: 0, z: 0, w: 1 } }],
   dynamicBodies: [{ id: 1, shape: { kind: 'sphere', radius: 0.5 }, color: [1, 0, 0], motion: 'dynamic', hidden: false, playerId: 3, position: { x: 0, y: 3, z: 0 }, rotation: { x: 0, y: 0, z: 0, w: 1 } }],
+  resumeToken: 'Zm9yLXRlc3RzLW9ubHktMzItYnl0ZXMtb2YtcmFuZG9t',
+  resumeGraceMs: 30_000,
+  resumed: false,
 };

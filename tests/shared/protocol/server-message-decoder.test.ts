@@ -2,7 +2,7 @@
 // descriptors and unknown events become error results that name the field, never exceptions.
 import { describe, expect, it } from 'vitest';
 import { encodeServerMessage, packValue, unpackFrame } from '../../../shared/protocol/codec.ts';
-import { ServerOpcode } from '../../../shared/protocol/opcodes.ts';
+import { PROTOCOL_VERSION, ServerOpcode } from '../../../shared/protocol/opcodes.ts';
 import { decodeServerMessage } from '../../../shared/protocol/server-message-decoder.ts';
 import { Prng } from '../../../shared/sim/prng.ts';
 import { sampleWelcome } from './sample-messages.ts';
@@ -43,6 +43,21 @@ describe('server-message-decoder', () => {
     expect(broken((w) => ((w.scenario as { bounds: unknown }).bounds = { min: { x: 0, y: 0 }, max: { x: 1, y: 1, z: 1 } }))).toMatch(/bounds.min.z/);
     expect(broken((w) => ((w.scenario as { params: unknown }).params = { a: 'x' }))).toMatch(/params.a/);
     expect(broken((w) => (w.staticBodies = [[{ kind: 'box' }], []]))).toMatch(/welcome.staticBodies.shapes\[0\].halfExtents/);
+  });
+
+  it('checks the welcome\'s resume fields, and reports a welcome of another version without reading its fields', () => {
+    const welcome = unpackFrame(encodeServerMessage(sampleWelcome)) as [number, Record<string, unknown>];
+    const patched = (patch: (w: Record<string, unknown>) => void) => {
+      const copy = structuredClone(welcome);
+      patch(copy[1]);
+      return decodeServerMessage(packValue(copy));
+    };
+    expect(patched((w) => (w.resumeToken = 'has space'))).toMatchObject({ ok: false, error: expect.stringMatching(/welcome.resumeToken must be a token/) });
+    expect(patched((w) => delete w.resumed)).toMatchObject({ ok: false, error: 'welcome.resumed must be true or false' });
+    expect(patched((w) => (w.resumeGraceMs = -1))).toMatchObject({ ok: false, error: expect.stringMatching(/welcome.resumeGraceMs/) });
+    expect(patched((w) => (w.resumeToken = null))).toMatchObject({ ok: true, message: { resumeToken: null } });
+    const old = decodeServerMessage(packValue([ServerOpcode.Welcome, { protocolVersion: 1, playerId: 3 }]));
+    expect(old).toEqual({ ok: false, error: `the server speaks protocol 1, this client ${PROTOCOL_VERSION}`, serverVersion: 1 });
   });
 
   it('rejects unknown event types and events with missing fields', () => {

@@ -42,10 +42,44 @@ describe('validation', () => {
     expect(errorOf(packValue([ClientOpcode.Hello, PROTOCOL_VERSION, 'evil\u202e', null])).error).toMatch(/direction-override/);
     expect(errorOf(packValue([ClientOpcode.Hello, PROTOCOL_VERSION, 7, null])).error).toMatch(/name must be a string, got number/);
     expect(errorOf(packValue([ClientOpcode.Hello, PROTOCOL_VERSION, 'Ada', '../etc'])).error).toMatch(/room must be/);
-    expect(errorOf(packValue([ClientOpcode.Hello, PROTOCOL_VERSION, 'Ada'])).error).toMatch(/hello must have 3 field/);
+    expect(errorOf(packValue([ClientOpcode.Hello, PROTOCOL_VERSION, 'Ada'])).error).toMatch(/hello must have 3 or 4 fields, got 2/);
+    expect(errorOf(packValue([ClientOpcode.Hello, PROTOCOL_VERSION, 'Ada', null, {}, 1])).error).toMatch(/hello must have 3 or 4 fields, got 5/);
     const ok = decodeClientMessage(packValue([ClientOpcode.Hello, PROTOCOL_VERSION, '  Ada Lovelace ', 'r_1']));
     expect(ok).toMatchObject({ ok: true, message: { type: 'hello', name: 'Ada Lovelace', room: 'r_1' } });
     expect(checkPlayerName('Zoë 🚀')).toEqual({ ok: true, name: 'Zoë 🚀' });
+  });
+
+  it('reads hello options: seat and resume tokens, each checked, and nothing else', () => {
+    const hello = (options: unknown) => packValue([ClientOpcode.Hello, PROTOCOL_VERSION, 'Ada', null, options]);
+    expect(decodeClientMessage(hello({ seatToken: 's1.a.b.1.c', resumeToken: 'r-_9' }))).toEqual({
+      ok: true,
+      message: { type: 'hello', version: PROTOCOL_VERSION, name: 'Ada', room: null, seatToken: 's1.a.b.1.c', resumeToken: 'r-_9' },
+      clampedCommands: 0,
+    });
+    expect(decodeClientMessage(hello(null))).toMatchObject({ ok: true, message: { name: 'Ada' } });
+    expect(decodeClientMessage(hello({}))).toMatchObject({ ok: true });
+    expect(errorOf(hello({ seat: 'x' })).error).toBe('hello.options has no field "seat" (known: seatToken, resumeToken)');
+    expect(errorOf(hello(JSON.parse('{"__proto__": {"resumeToken": "x"}}'))).error).toMatch(/has no field "__proto_*"/);
+    expect(errorOf(hello(['x'])).error).toMatch(/hello.options must be a map/);
+    expect(errorOf(hello(new Uint8Array(3))).error).toMatch(/got binary/);
+    expect(errorOf(hello({ resumeToken: 'a b' })).error).toMatch(/hello.options.resumeToken must be 1-256 characters of A-Z a-z 0-9 _ . -, got "a b"/);
+    expect(errorOf(hello({ resumeToken: 'x'.repeat(257) })).error).toMatch(/resumeToken must be/);
+    expect(errorOf(hello({ seatToken: '' })).error).toMatch(/seatToken must be/);
+    expect(errorOf(hello({ seatToken: 5 })).error).toMatch(/seatToken must be .*, got 5$/);
+    expect(errorOf(hello({ seatToken: { toString: 1 } })).error).toMatch(/got object$/);
+  });
+
+  it('answers any other protocol version with version-mismatch before reading the rest of the hello', () => {
+    const mismatch = (fields: unknown[]) => errorOf(packValue([ClientOpcode.Hello, ...fields]));
+    for (const fields of [[1, 'Ada', null], [PROTOCOL_VERSION + 1], [0, { toString: 1 }, 7, 8, 9], [65535, '', '']]) {
+      expect(mismatch(fields), JSON.stringify(fields)).toEqual({
+        code: ErrorCode.VersionMismatch,
+        error: `this server speaks protocol ${PROTOCOL_VERSION} and the client sent protocol ${fields[0] as number}: use a client built for protocol ${PROTOCOL_VERSION}`,
+      });
+    }
+    expect(mismatch([{ toString: 1 }, 'Ada', null])).toEqual({ code: ErrorCode.BadMessage, error: 'hello.version must be an integer in [0, 65535], got object' });
+    expect(mismatch([-1, 'Ada', null]).error).toBe('hello.version must be an integer in [0, 65535], got -1');
+    expect(mismatch([]).error).toBe('hello.version must be an integer in [0, 65535], got undefined');
   });
 
   it('rejects NaN, Infinity, strings and bad shapes in input commands, naming the command and tick', () => {
