@@ -1,9 +1,11 @@
-// Checks every client→server frame: size, msgpack well-formedness, opcode, arity, field types and ranges, finite
-// numbers, and each input command through the one validator (validateInputCommand). Never throws.
+// Checks every client→server frame: size, msgpack structure (plain types, bounded depth), opcode, arity, field types
+// and ranges, finite numbers, and each input command through the one validator (validateInputCommand). Total: never
+// throws for any bytes, and error texts describe values without running any of their code (describeValue).
+import { describeValue } from '../sim/describe-value.ts';
 import { validateInputCommand, type InputCommand } from '../sim/input.ts';
 import type { ClientMessage } from './client-messages.ts';
-import { toBytes, unpackFrame } from './codec.ts';
-import { MAX_CLIENT_MESSAGE_BYTES, MAX_CLIENT_TIME_MS, MAX_INPUT_COMMANDS_PER_MESSAGE, MAX_NAME_LENGTH, MAX_TICK, ROOM_ID_PATTERN } from './limits.ts';
+import { decodeFrame, toBytes } from './codec.ts';
+import { MAX_CLIENT_FRAME_DEPTH, MAX_CLIENT_MESSAGE_BYTES, MAX_CLIENT_TIME_MS, MAX_INPUT_COMMANDS_PER_MESSAGE, MAX_NAME_LENGTH, MAX_TICK, ROOM_ID_PATTERN } from './limits.ts';
 import { ClientOpcode, ErrorCode } from './opcodes.ts';
 
 /** A checked client message, or why it was refused (an ErrorCode and a sentence naming the field). */
@@ -26,7 +28,7 @@ const FORBIDDEN_NAME_CHARS = /[\u0000-\u001f\u007f-\u009f\u202a-\u202e\u2066-\u2
 
 /** Checks a display name; returns the trimmed name or an error sentence. */
 export function checkPlayerName(raw: unknown): { ok: true; name: string } | { ok: false; error: string } {
-  if (typeof raw !== 'string') return { ok: false, error: `name must be a string, got ${typeOf(raw)}` };
+  if (typeof raw !== 'string') return { ok: false, error: `name must be a string, got ${describeValue(raw)}` };
   const name = raw.trim();
   if (name.length === 0) return { ok: false, error: 'name must not be empty' };
   if (name.length > MAX_NAME_LENGTH) return { ok: false, error: `name must be at most ${MAX_NAME_LENGTH} characters, got ${name.length}` };
@@ -41,13 +43,6 @@ export function checkRoomId(raw: unknown): { ok: true; room: string | null } | {
   return { ok: true, room: raw };
 }
 
-function typeOf(v: unknown): string {
-  if (v === null) return 'null';
-  if (Array.isArray(v)) return 'array';
-  if (v instanceof Uint8Array) return 'binary';
-  return typeof v;
-}
-
 function arity(fields: unknown[], n: number, name: string): Failure | null {
   return fields.length === n ? null : bad(`${name} must have ${n - 1} field(s), got ${fields.length - 1}`);
 }
@@ -56,7 +51,7 @@ function decodeInput(fields: unknown[]): ClientDecodeResult {
   const wrong = arity(fields, 3, 'input');
   if (wrong) return wrong;
   const [, firstTick, list] = fields;
-  if (!isTick(firstTick)) return bad(`input.firstTick must be an integer tick in [0, ${MAX_TICK}], got ${String(firstTick)}`, ErrorCode.BadInput);
+  if (!isTick(firstTick)) return bad(`input.firstTick must be an integer tick in [0, ${MAX_TICK}], got ${describeValue(firstTick)}`, ErrorCode.BadInput);
   if (!Array.isArray(list) || list.length === 0 || list.length > MAX_INPUT_COMMANDS_PER_MESSAGE) {
     return bad(`input.commands must be an array of 1..${MAX_INPUT_COMMANDS_PER_MESSAGE} commands`, ErrorCode.BadInput);
   }
@@ -78,23 +73,20 @@ function decodeInput(fields: unknown[]): ClientDecodeResult {
 export function decodeClientMessage(data: unknown, maxBytes: number = MAX_CLIENT_MESSAGE_BYTES): ClientDecodeResult {
   if (typeof data === 'string') return bad('text frames are not accepted: send binary msgpack', ErrorCode.Malformed);
   const bytes = toBytes(data);
-  if (bytes === null) return bad(`expected binary data, got ${typeOf(data)}`, ErrorCode.Malformed);
+  if (bytes === null) return bad(`expected binary data, got ${describeValue(data)}`, ErrorCode.Malformed);
   if (bytes.length > maxBytes) return bad(`message of ${bytes.length} bytes exceeds the ${maxBytes}-byte limit`, ErrorCode.Oversize);
   if (bytes.length === 0) return bad('empty message', ErrorCode.Malformed);
-  let value: unknown;
-  try {
-    value = unpackFrame(bytes);
-  } catch (e) {
-    return bad(`not a msgpack value: ${(e as Error).message.slice(0, 120)}`, ErrorCode.Malformed);
-  }
-  if (!Array.isArray(value) || value.length === 0) return bad(`message must be an array [opcode, ...fields], got ${typeOf(value)}`);
+  const frame = decodeFrame(bytes, MAX_CLIENT_FRAME_DEPTH);
+  if (!frame.ok) return bad(`not a plain msgpack value: ${frame.error}`, ErrorCode.Malformed);
+  const value = frame.value;
+  if (!Array.isArray(value) || value.length === 0) return bad(`message must be an array [opcode, ...fields], got ${describeValue(value)}`);
   const op = value[0];
   switch (op) {
     case ClientOpcode.Hello: {
       const wrong = arity(value, 4, 'hello');
       if (wrong) return wrong;
       const [, version, rawName, rawRoom] = value;
-      if (typeof version !== 'number' || !Number.isInteger(version) || version < 0 || version > 0xffff) return bad(`hello.version must be an integer, got ${String(version)}`);
+      if (typeof version !== 'number' || !Number.isInteger(version) || version < 0 || version > 0xffff) return bad(`hello.version must be an integer in [0, 65535], got ${describeValue(version)}`);
       const name = checkPlayerName(rawName);
       if (!name.ok) return bad(`hello.${name.error}`);
       if (rawRoom === undefined) return bad('hello.room must be a room id or null');
@@ -107,14 +99,14 @@ export function decodeClientMessage(data: unknown, maxBytes: number = MAX_CLIENT
     case ClientOpcode.SnapshotAck: {
       const wrong = arity(value, 2, 'ack');
       if (wrong) return wrong;
-      if (!isTick(value[1])) return bad(`ack.tick must be an integer tick in [0, ${MAX_TICK}], got ${String(value[1])}`);
+      if (!isTick(value[1])) return bad(`ack.tick must be an integer tick in [0, ${MAX_TICK}], got ${describeValue(value[1])}`);
       return { ok: true, message: { type: 'ack', tick: value[1] }, clampedCommands: 0 };
     }
     case ClientOpcode.Ping: {
       const wrong = arity(value, 2, 'ping');
       if (wrong) return wrong;
       const t = value[1];
-      if (typeof t !== 'number' || !Number.isFinite(t) || Math.abs(t) > MAX_CLIENT_TIME_MS) return bad(`ping.clientTimeMs must be a finite number within ±${MAX_CLIENT_TIME_MS}, got ${String(t)}`);
+      if (typeof t !== 'number' || !Number.isFinite(t) || Math.abs(t) > MAX_CLIENT_TIME_MS) return bad(`ping.clientTimeMs must be a finite number within ±${MAX_CLIENT_TIME_MS}, got ${describeValue(t)}`);
       return { ok: true, message: { type: 'ping', clientTimeMs: t }, clampedCommands: 0 };
     }
     case ClientOpcode.Bye: {
@@ -123,6 +115,6 @@ export function decodeClientMessage(data: unknown, maxBytes: number = MAX_CLIENT
       return { ok: true, message: { type: 'bye' }, clampedCommands: 0 };
     }
     default:
-      return bad(`unknown opcode ${typeof op === 'number' ? op : typeOf(op)}`);
+      return bad(`unknown opcode ${describeValue(op)}`);
   }
 }
