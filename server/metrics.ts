@@ -42,6 +42,10 @@ export interface ServerMetrics {
   /** Clients disconnected by the server (reason label). */
   readonly disconnects: Counter<string>;
   readonly connections: Counter<string>;
+  /** Exceptions while taking a client's message (that client was disconnected; the server went on). */
+  readonly messageErrors: Counter<string>;
+  /** Exceptions and rejections that reached the process's last-resort handler (kind label: exception, rejection). */
+  readonly uncaughtErrors: Counter<string>;
 }
 
 /** Creates a fresh registry with all metrics (plus Node process metrics when `processMetrics`). */
@@ -77,6 +81,8 @@ export function createMetrics(opts: { processMetrics?: boolean; prefix?: string 
     badMessages: counter('bad_messages_total', 'Messages rejected by validation', ['reason']),
     disconnects: counter('disconnects_total', 'Clients disconnected by the server', ['reason']),
     connections: counter('connections_total', 'WebSocket connections accepted'),
+    messageErrors: counter('message_errors_total', "Exceptions while handling a client's message (the client was disconnected)"),
+    uncaughtErrors: counter('uncaught_errors_total', "Exceptions and promise rejections caught by the serving process's last-resort handler", ['kind']),
   };
 }
 
