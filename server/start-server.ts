@@ -35,6 +35,8 @@ export interface StartServerOptions {
   snapshotRateHz?: number;
   /** Record every room's input log here. */
   recordDir?: string | null;
+  /** A state hash record in recordings every N ticks (default 60; 1 checks every tick on replay). */
+  recordHashEveryTicks?: number;
   /** Most clients per room. Default 32. */
   maxClients?: number;
   maxConnections?: number;
@@ -89,7 +91,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   if (!Number.isInteger(port) || port < 0 || port > 65535) throw new Error(`port must be an integer in [0, 65535], got ${port}`);
 
   const game = await GameServer.create({
-    factory: createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null }),
+    factory: createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null, hashEveryTicks: opts.recordHashEveryTicks }),
     defaultScenario: scenarioName,
     defaultParams: opts.params,
     seed: opts.seed,
