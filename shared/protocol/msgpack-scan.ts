@@ -3,7 +3,10 @@
 // extension types (records, structured clones, typed arrays, dates, bigints…), no `__proto__` key, bounded nesting
 // depth, and no declared length larger than the bytes that follow. Iterative: a hostile frame cannot overflow the stack.
 
-/** Bytes of the key "__proto__" as a fixstr (0xa9 + 9 ASCII bytes). */
+let stackLeft = new Int32Array(65);
+let stackMap = new Uint8Array(65);
+
+/** Bytes of the key "__proto__" (9 ASCII bytes). */
 const PROTO_KEY = [0x5f, 0x5f, 0x70, 0x72, 0x6f, 0x74, 0x6f, 0x5f, 0x5f];
 
 function readLength(bytes: Uint8Array, at: number, size: 1 | 2 | 4): number {
@@ -24,18 +27,25 @@ function isProtoKey(bytes: Uint8Array, start: number, length: number): boolean {
  */
 export function scanMsgpack(bytes: Uint8Array, maxDepth: number): string | null {
   const n = bytes.length;
-  // One entry per open container: values still to read, and whether it is a map (keys at even counts left).
-  const left: number[] = [1];
-  const isMap: boolean[] = [false];
+  // One entry per open container: values still to read (checked against the bytes left first), and whether it is a
+  // map (keys at even counts left). Reused between calls: a scan never runs inside another.
+  if (maxDepth + 1 > stackLeft.length) {
+    stackLeft = new Int32Array(maxDepth + 1);
+    stackMap = new Uint8Array(maxDepth + 1);
+  }
+  const left = stackLeft;
+  const isMap = stackMap;
+  left[0] = 1;
+  isMap[0] = 0;
+  let depth = 1; // entries in use
   let pos = 0;
-  while (left.length > 0) {
-    const top = left.length - 1;
+  while (depth > 0) {
+    const top = depth - 1;
     if (left[top] === 0) {
-      left.pop();
-      isMap.pop();
+      depth--;
       continue;
     }
-    const atKey = isMap[top] && left[top] % 2 === 0;
+    const atKey = isMap[top] === 1 && left[top] % 2 === 0;
     left[top]--;
     if (pos >= n) return `the frame ends at byte ${n} inside a value`;
     const at = pos;
@@ -135,9 +145,10 @@ export function scanMsgpack(bytes: Uint8Array, maxDepth: number): string | null 
     if (items >= 0) {
       // Every value takes at least one byte: a larger count is a lie (and an allocation bomb for the decoder).
       if (items > n - pos) return `byte ${at}: a container of ${items} values, but only ${n - pos} bytes follow`;
-      if (left.length > maxDepth) return `byte ${at}: containers nest deeper than ${maxDepth}`;
-      left.push(items);
-      isMap.push(map);
+      if (depth > maxDepth) return `byte ${at}: containers nest deeper than ${maxDepth}`;
+      left[depth] = items;
+      isMap[depth] = map ? 1 : 0;
+      depth++;
     }
   }
   if (pos !== n) return `${n - pos} trailing byte(s) after the value (at byte ${pos})`;
