@@ -10,6 +10,7 @@ import { join } from 'node:path';
 import { afterAll, describe, expect, it } from 'vitest';
 import { connect, type NetClient } from '../../client/net/index.ts';
 import { replayLog } from '../../server/cli/replay-session.ts';
+import { ByeReason } from '../../shared/protocol/index.ts';
 import { quantizeInput } from '../../shared/sim/input.ts';
 import { Prng } from '../../shared/sim/prng.ts';
 import { canBindLoopbackRange, framesThatThrow, runFuzz, type FuzzStats } from '../helpers/fuzz-driver.ts';
@@ -111,6 +112,9 @@ describe('fuzz (real server process)', () => {
       console.log(`server: ${counterSum(metrics, 'taos_messages_received_total')} messages received, disconnects ${metrics.split('\n').filter((l) => l.startsWith('taos_disconnects_total{')).map((l) => l.replace('taos_disconnects_total', '')).join(' ')}`);
       expect(stats.incidents.slice(0, 3), `internal errors answered to fuzz sockets (their recent frames in hex): ${context}`).toEqual([]);
       expect(failures, `message or uncaught errors in the server: ${context}`).toBe(0);
+      // Fuzz sockets are sent away only for what they did (and a bye is all a healthy server ever kicks with).
+      const expectedByes = new Set<string>([ByeReason.TooManyErrors, ByeReason.Flood, ByeReason.VersionMismatch, ByeReason.RoomNotFound, ByeReason.RoomFull, ByeReason.ServerFull, ByeReason.Timeout]);
+      expect(Object.keys(stats.byeReasons).filter((r) => !expectedByes.has(r)), context).toEqual([]);
       expect(stats.timedOut, `only ${stats.generatedFrames} frames before the deadline`).toBe(false);
       expect(stats.generatedFrames).toBeGreaterThanOrEqual(FRAMES);
       if (FRAMES >= 10_000) expect(Object.keys(stats.byKind).sort()).toEqual([...FRAME_KINDS].sort());
