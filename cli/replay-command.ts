@@ -17,10 +17,12 @@ export async function replayFile(file: string, run: () => Promise<ReplayReport>)
   }
 }
 
-/** The human-readable summary of a replay (several lines). */
-export function describeReplay(r: ReplayReport): string {
+/** What describing a replay's verdict needs: the report, or what `replay --json` printed of it (verify's children). */
+export type ReplayVerdict = Pick<ReplayReport, 'status' | 'ticks' | 'hashesChecked' | 'divergence' | 'corruption' | 'joltVersionNote'>;
+
+/** The lines naming where a diverged or corrupt replay went wrong (tick, body, record, byte offset); null when ok. */
+export function describeFailure(r: ReplayVerdict): string | null {
   const lines: string[] = [];
-  const what = `${r.header.scenario} (seed ${JSON.stringify(r.header.seed)})`;
   if (r.joltVersionNote) lines.push(`warning: ${r.joltVersionNote}`);
   if (r.status === 'diverged' && r.divergence) {
     const d = r.divergence;
@@ -39,7 +41,16 @@ export function describeReplay(r: ReplayReport): string {
     lines.push(`  the ${r.ticks} ticks before it replayed and all ${r.hashesChecked} recorded hashes matched`);
     return lines.join('\n') + '\n';
   }
-  lines.push(`ok: ${r.ticks} ticks of ${what} replayed, ${r.hashesChecked} recorded hashes match, final hash ${r.finalHash} (${r.msPerTick.toFixed(3)} ms/tick)`);
+  return null;
+}
+
+/** The human-readable summary of a replay (several lines). */
+export function describeReplay(r: ReplayReport): string {
+  const failure = describeFailure(r);
+  if (failure !== null) return failure;
+  const lines: string[] = [];
+  if (r.joltVersionNote) lines.push(`warning: ${r.joltVersionNote}`);
+  lines.push(`ok: ${r.ticks} ticks of ${r.header.scenario} (seed ${JSON.stringify(r.header.seed)}) replayed, ${r.hashesChecked} recorded hashes match, final hash ${r.finalHash} (${r.msPerTick.toFixed(3)} ms/tick)`);
   if (r.log === 'truncated') lines.push(`note: the log ends in a partial record (${r.droppedBytes} bytes, a crash while writing): the whole records before it were replayed`);
   if (r.log === 'unterminated') lines.push('note: the log has no end record (the recorder did not close it: a crash, or still recording)');
   return lines.join('\n') + '\n';

@@ -88,7 +88,13 @@ export async function replayLog(file: string, opts: ReplayOptions = {}): Promise
         if (e.type === 'tick') {
           if (s.tick >= toTick) break;
           const t0 = performance.now();
-          s.step(e.record);
+          try {
+            s.step(e.record);
+          } catch (err) {
+            // A well-framed record the simulation cannot apply (a player joining twice, a world that cannot hold
+            // what the record asks for): the log, not the replay, is at fault; the record names where.
+            throw new LogCorruptError(e.index, e.offset, `the simulation cannot apply tick record ${e.record.tick}: ${err instanceof Error ? err.message : 'it threw'}`);
+          }
           stepMs += performance.now() - t0;
           report.ticks++;
           if (hashes) hashes.push(s.stateHash());
@@ -112,7 +118,7 @@ export async function replayLog(file: string, opts: ReplayOptions = {}): Promise
       report.corruption = { recordIndex: err.recordIndex, byteOffset: err.byteOffset, reason: err.reason };
     }
     const outcome = reader.outcome;
-    report.log = outcome?.status ?? 'stopped';
+    report.log = outcome?.status ?? (report.status === 'corrupt' ? 'corrupt' : 'stopped');
     if (outcome?.status === 'truncated') report.droppedBytes = outcome.fileBytes - outcome.validBytes;
     report.finalHash = s.stateHash();
     report.msPerTick = report.ticks > 0 ? stepMs / report.ticks : 0;

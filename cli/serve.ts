@@ -1,6 +1,8 @@
 // The `serve` command's body: starts the server with the command-line options, prints where it listens, logs JSON
-// lines to stderr, and on SIGINT/SIGTERM shuts down cleanly (byes, recordings ended, logs flushed) and returns.
+// lines to stderr, keeps going after an uncaught error (last resort: logged and counted), and on SIGINT/SIGTERM
+// shuts down cleanly (byes, recordings ended, logs flushed) and returns.
 import type { CliIo } from './command.ts';
+import { installLastResort } from '../server/last-resort.ts';
 import { createLogger } from '../server/logger.ts';
 import { installShutdown, type SignalSource } from '../server/shutdown.ts';
 import { startServer, type StartServerOptions } from '../server/start-server.ts';
@@ -26,6 +28,7 @@ export async function runServe(opts: ServeOptions, io: CliIo): Promise<number> {
   }
   const room = server.game.rooms.get('default');
   const what = room ? `${room.scenarioName}` : 'no default room';
+  const removeLastResort = installLastResort({ logger, metrics: server.game.metrics });
   io.stdout(`taos-physics serving ${what} at ${server.url} (WebSocket ${server.wsUrl}); Ctrl+C stops\n`);
   return new Promise<number>((resolve) => {
     const { uninstall } = installShutdown(server, {
@@ -33,6 +36,7 @@ export async function runServe(opts: ServeOptions, io: CliIo): Promise<number> {
       source: opts.signals,
       exit: (code) => {
         uninstall();
+        removeLastResort();
         resolve(code);
         // Nothing should hold the event loop after a clean shutdown; if something does, do not hang forever.
         setTimeout(() => process.exit(code), 3000).unref();

@@ -7,7 +7,7 @@ import { Worker } from 'node:worker_threads';
 import { LogReader } from '../server/log/log-reader.ts';
 import type { ParsedArgs } from './args.ts';
 import { ExitCode, UsageError, type CliIo, type CommandSpec } from './command.ts';
-import { describeReplay } from './replay-command.ts';
+import { describeFailure, type ReplayVerdict } from './replay-command.ts';
 import type { ReplayReport } from './replay-session.ts';
 
 const BIN = fileURLToPath(new URL('../bin/taos-physics.js', import.meta.url));
@@ -17,7 +17,21 @@ interface RunResult {
   status: ReplayReport['status'];
   hashes: string[];
   msPerTick: number;
-  report: Pick<ReplayReport, 'status' | 'divergence' | 'corruption'> & Partial<ReplayReport>;
+  report: ReplayVerdict;
+}
+
+const STATUSES: ReadonlySet<string> = new Set<ReplayReport['status']>(['ok', 'diverged', 'corrupt']);
+
+/** The verdict and hashes in what `replay --json --hashes` printed; null when it is not that. */
+function parseReplayJson(parsed: unknown): RunResult | null {
+  if (parsed === null || typeof parsed !== 'object' || Array.isArray(parsed)) return null;
+  const p = parsed as Record<string, unknown>;
+  if (typeof p.status !== 'string' || !STATUSES.has(p.status) || !Array.isArray(p.hashes) || typeof p.ticks !== 'number' || typeof p.hashesChecked !== 'number') return null;
+  const report: ReplayVerdict = { status: p.status as ReplayReport['status'], ticks: p.ticks, hashesChecked: p.hashesChecked };
+  if (p.divergence) report.divergence = p.divergence as ReplayReport['divergence'];
+  if (p.corruption) report.corruption = p.corruption as ReplayReport['corruption'];
+  if (typeof p.warning === 'string') report.joltVersionNote = p.warning;
+  return { status: report.status, hashes: p.hashes as string[], msPerTick: Number(p.msPerTick), report };
 }
 
 /** Replays in a child process running this same CLI (`replay FILE --json --hashes`). */
@@ -31,15 +45,15 @@ function replayInProcess(file: string): Promise<RunResult> {
     child.on('error', reject);
     child.on('close', (code) => {
       const stderr = Buffer.concat(err).toString('utf8').trim();
-      // `replay --json --hashes` prints its ReplayReport plus the per-tick hashes and the speed.
-      let parsed: RunResult['report'] & { hashes?: string[]; msPerTick?: number };
+      let parsed: unknown = null;
       try {
         parsed = JSON.parse(Buffer.concat(out).toString('utf8'));
       } catch {
-        reject(new Error(`replay process exited with code ${code}: ${stderr || 'no output'}`));
-        return;
+        parsed = null;
       }
-      resolve({ status: parsed.status, hashes: parsed.hashes ?? [], msPerTick: Number(parsed.msPerTick), report: parsed });
+      const result = parseReplayJson(parsed);
+      if (result === null) reject(new Error(`replay process exited with code ${code}: ${stderr || 'no output'}`));
+      else resolve(result);
     });
   });
 }
@@ -126,7 +140,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
   if (problems.length > 0 || logProblem) {
     if (!json) {
       for (const p of problems) io.stderr(`verify: ${p}\n`);
-      if (logProblem) io.stderr(`verify: replay vs log: ${describeReplay(logProblem.report as ReplayReport)}`);
+      if (logProblem) io.stderr(`verify: replay vs log: ${describeFailure(logProblem.report) ?? `${logProblem.status}\n`}`);
     }
     return ExitCode.Failed;
   }

@@ -142,6 +142,14 @@ export class ClientSession implements RoomMember, ResumeHolder {
 
   private onMessage(data: Uint8Array, binary: boolean): void {
     if (this.state === 'closed') return;
+    try {
+      this.receive(data, binary);
+    } catch (error) {
+      this.failed(error);
+    }
+  }
+
+  private receive(data: Uint8Array, binary: boolean): void {
     const m = this.ctx.metrics;
     this.stats.messagesReceived++;
     m.messagesReceived.inc();
@@ -165,12 +173,22 @@ export class ClientSession implements RoomMember, ResumeHolder {
       return;
     }
     if (decoded.clampedCommands > 0) m.inputsClamped.inc(decoded.clampedCommands);
+    this.handle(decoded.message);
+  }
+
+  /**
+   * An exception while taking one of this client's messages (decoding or handling: a server bug, whatever the
+   * client sent) is that client's protocol error: an error and a bye, one log line, a count; never the room's or
+   * the process's problem. The session is closed, so nothing it sends afterwards is read or logged again.
+   */
+  private failed(error: unknown): void {
+    this.ctx.metrics.messageErrors.inc();
+    this.ctx.logger.error({ session: this.id, remote: this.conn.remote, state: this.state, err: error }, 'handling a client message failed; disconnecting the client');
     try {
-      this.handle(decoded.message);
-    } catch (error) {
-      // A server-side bug while handling a valid message: drop this client, never the room.
-      this.ctx.logger.error({ session: this.id, err: error }, 'handling a client message failed');
+      this.sendError(ErrorCode.Internal, 'the server failed while handling your message');
       this.end(ByeReason.Kicked, 'internal error handling your message', CloseCode.InternalError);
+    } catch {
+      this.finish('leave'); // the link itself is broken: forget the client, the transport closes the socket
     }
   }
 
@@ -246,10 +264,13 @@ export class ClientSession implements RoomMember, ResumeHolder {
       return;
     }
     this.seatId = seat.seatId;
-    this.ctx.rooms.resolve(seat.roomId === null ? {} : { roomId: seat.roomId }).then(
-      (room) => this.joinRoom(room, hello.name),
-      (error: unknown) => this.joinFailed(error),
-    );
+    this.ctx.rooms
+      .resolve(seat.roomId === null ? {} : { roomId: seat.roomId })
+      .then(
+        (room) => this.joinRoom(room, hello.name),
+        (error: unknown) => this.joinFailed(error),
+      )
+      .catch((error: unknown) => this.failed(error)); // the welcome path is part of handling the hello
   }
 
   private joinRoom(room: Room, name: string): void {

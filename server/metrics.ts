@@ -46,6 +46,10 @@ export interface ServerMetrics {
   readonly accessRefused: Counter<string>;
   /** Players taken back by a new connection with their resume token. */
   readonly resumes: Counter<string>;
+  /** Exceptions while taking a client's message (that client was disconnected; the server went on). */
+  readonly messageErrors: Counter<string>;
+  /** Exceptions and rejections that reached the process's last-resort handler (kind label: exception, rejection). */
+  readonly uncaughtErrors: Counter<string>;
 }
 
 /** Creates a fresh registry with all metrics (plus Node process metrics when `processMetrics`). */
@@ -83,6 +87,8 @@ export function createMetrics(opts: { processMetrics?: boolean; prefix?: string 
     connections: counter('connections_total', 'WebSocket connections accepted'),
     accessRefused: counter('access_refused_total', 'Requests, WebSocket upgrades and hellos refused by access control', ['reason']),
     resumes: counter('resumes_total', 'Players taken back by a new connection with their resume token'),
+    messageErrors: counter('message_errors_total', "Exceptions while handling a client's message (the client was disconnected)"),
+    uncaughtErrors: counter('uncaught_errors_total', "Exceptions and promise rejections caught by the serving process's last-resort handler", ['kind']),
   };
 }
 

@@ -38,6 +38,8 @@ export interface StartServerOptions extends AccessOptions {
   snapshotRateHz?: number;
   /** Record every room's input log here. */
   recordDir?: string | null;
+  /** A state hash record in recordings every N ticks (default 60; 1 checks every tick on replay). */
+  recordHashEveryTicks?: number;
   /** Most clients per room. Default 32. */
   maxClients?: number;
   maxConnections?: number;
@@ -95,7 +97,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   const access = createServerAccess(opts, metrics, logger);
 
   const game = await GameServer.create({
-    factory: createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null }),
+    factory: createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null, hashEveryTicks: opts.recordHashEveryTicks }),
     defaultScenario: scenarioName,
     defaultParams: opts.params,
     seed: opts.seed,

@@ -5,12 +5,17 @@ import { Packr, Unpackr } from 'msgpackr';
 import type { SimEvent } from '../sim/types.ts';
 import type { ClientMessage } from './client-messages.ts';
 import { packDescriptors } from './descriptor-codec.ts';
+import { scanMsgpack } from './msgpack-scan.ts';
 import { ClientOpcode, ServerOpcode } from './opcodes.ts';
 import type { ServerMessage } from './server-messages.ts';
 
-// Plain msgpack: no record extension, no typed-array extensions, maps decode to plain objects.
+// Plain msgpack: no record extension, no typed-array extensions, maps decode to plain objects. 64-bit integers
+// decode as numbers (never bigints); scanMsgpack has already refused every extension type before unpackr runs.
 const packr = new Packr({ useRecords: false, moreTypes: false });
-const unpackr = new Unpackr({ useRecords: false, moreTypes: false, mapsAsObjects: true });
+const unpackr = new Unpackr({ useRecords: false, moreTypes: false, mapsAsObjects: true, int64AsType: 'number' });
+
+/** Nesting limit of frames the server sends (welcome geometry with compound shapes is the deepest). */
+export const MAX_SERVER_FRAME_DEPTH = 64;
 
 /** Turns what a socket delivers (Uint8Array, ArrayBuffer, a view, or ws's Buffer[] fragments) into bytes; null if not binary. */
 export function toBytes(data: unknown): Uint8Array | null {
@@ -30,9 +35,35 @@ export function toBytes(data: unknown): Uint8Array | null {
   return null;
 }
 
-/** Decodes one msgpack value that must span the whole buffer; throws on malformed data or trailing bytes. */
-export function unpackFrame(bytes: Uint8Array): unknown {
-  return unpackr.unpack(bytes);
+/** A frame that is not one plain msgpack value (see scanMsgpack). */
+export class FrameError extends Error {
+  override name = 'FrameError';
+}
+
+/** One decoded frame, or why it is not one plain msgpack value. */
+export type FrameDecode = { ok: true; value: unknown } | { ok: false; error: string };
+
+/**
+ * Decodes one msgpack value that must span the whole buffer, after scanMsgpack has checked its structure (plain
+ * types only, at most `maxDepth` nested containers). Never throws: a refusal costs no exception (no stack trace),
+ * which keeps garbage cheap to turn away. A decoded value holds only null, booleans, numbers, strings,
+ * Uint8Arrays, arrays and plain objects whose keys are strings.
+ */
+export function decodeFrame(bytes: Uint8Array, maxDepth: number = MAX_SERVER_FRAME_DEPTH): FrameDecode {
+  const problem = scanMsgpack(bytes, maxDepth);
+  if (problem !== null) return { ok: false, error: problem };
+  try {
+    return { ok: true, value: unpackr.unpack(bytes) };
+  } catch (error) {
+    return { ok: false, error: error instanceof Error ? error.message.slice(0, 120) : 'msgpack decoding failed' };
+  }
+}
+
+/** decodeFrame for callers that want the value or an exception (FrameError). */
+export function unpackFrame(bytes: Uint8Array, maxDepth: number = MAX_SERVER_FRAME_DEPTH): unknown {
+  const r = decodeFrame(bytes, maxDepth);
+  if (!r.ok) throw new FrameError(r.error);
+  return r.value;
 }
 
 /** Encodes any plain value as msgpack (tests and tools; messages go through the typed encoders). */

@@ -1,6 +1,7 @@
 // Body descriptors on the wire (welcome geometry, snapshot spawns): a table of distinct shapes plus one compact row
 // per body, and the checked inverse that turns untrusted msgpack data back into BodyDescriptor[] or a clear Error.
 import type { ShapeSpec } from '../physics-data/shape-spec.ts';
+import { describeValue } from '../sim/describe-value.ts';
 import type { BodyDescriptor } from '../sim/types.ts';
 
 /** Wire form: [shapes, rows]; a row is [id, shapeIndex, r, g, b, motion, hidden, playerId|-1, px, py, pz, qx, qy, qz, qw]. */
@@ -101,7 +102,7 @@ function isObject(v: unknown): v is Record<string, unknown> {
 }
 
 function finite(v: unknown, path: string): number {
-  if (typeof v !== 'number' || !Number.isFinite(v)) fail(path, `must be a finite number, got ${String(v)}`);
+  if (typeof v !== 'number' || !Number.isFinite(v)) fail(path, `must be a finite number, got ${describeValue(v)}`);
   return v;
 }
 
@@ -187,7 +188,7 @@ export function parseShape(raw: unknown, path = 'shape', depth = 0): ShapeSpec {
       return { kind: 'compound', parts };
     }
     default:
-      return fail(`${path}.kind`, `unknown shape kind ${JSON.stringify(String(raw.kind))}`);
+      return fail(`${path}.kind`, `unknown shape kind ${describeValue(raw.kind)}`);
   }
 }
 

@@ -1,7 +1,7 @@
 // Public surface of the wire protocol: the server and the client library import from here (pure, isomorphic).
 export { BitReader, BitWriter, bestExpGolombOrder, bitsFor, expGolombBits, unzigzag, zigzag } from './bit-stream.ts';
 export type { ClientByeMessage, ClientMessage, HelloMessage, InputMessage, PingMessage, SnapshotAckMessage } from './client-messages.ts';
-export { encodeClientMessage, encodeServerMessage, packValue, toBytes, unpackFrame } from './codec.ts';
+export { decodeFrame, encodeClientMessage, encodeServerMessage, FrameError, MAX_SERVER_FRAME_DEPTH, packValue, toBytes, unpackFrame, type FrameDecode } from './codec.ts';
 export { packDescriptors, parseShape, unpackDescriptors, type PackedDescriptors } from './descriptor-codec.ts';
 export * from './limits.ts';
 export { ByeReason, ClientOpcode, ErrorCode, PROTOCOL_VERSION, RECONNECTABLE_BYE_REASONS, ServerOpcode } from './opcodes.ts';

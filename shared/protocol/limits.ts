@@ -3,6 +3,8 @@
 
 /** Largest client→server frame accepted (bytes); anything larger is rejected before decoding. */
 export const MAX_CLIENT_MESSAGE_BYTES = 1024;
+/** Most nested containers in a client frame (an input message nests 3: message, command list, command). */
+export const MAX_CLIENT_FRAME_DEPTH = 8;
 /** Longest player name (UTF-16 code units, after trimming). */
 export const MAX_NAME_LENGTH = 32;
 /** Longest room id. */

@@ -1,6 +1,7 @@
 // Snapshot quantization: the format (position grid from the scenario's bounds, rotation bits) and the float ⇄ integer
 // mappings for body poses (smallest-three quaternions) and character states. Pure arithmetic: no engine Math.
 import type { Vec3Like } from '../physics-data/vectors.ts';
+import { describeValue } from '../sim/describe-value.ts';
 
 /** Largest position step (m) the default format allows on any axis: quantization error is at most half of it. */
 export const DEFAULT_MAX_POSITION_STEP_METRES = 0.002;
@@ -59,7 +60,7 @@ function checkBounds(bounds: Bounds): void {
     const lo = bounds.min[axis];
     const hi = bounds.max[axis];
     if (typeof lo !== 'number' || typeof hi !== 'number' || !Number.isFinite(lo) || !Number.isFinite(hi)) {
-      throw new Error(`snapshot format: bounds.${axis} must be finite numbers, got [${String(lo)}, ${String(hi)}]`);
+      throw new Error(`snapshot format: bounds.${axis} must be finite numbers, got [${describeValue(lo)}, ${describeValue(hi)}]`);
     }
     if (!(hi > lo)) throw new Error(`snapshot format: bounds.max.${axis} (${hi}) must exceed bounds.min.${axis} (${lo})`);
   }
@@ -88,11 +89,11 @@ export function snapshotFormatFromSpec(bounds: Bounds, spec: SnapshotFormatSpec)
   const cap = ((1 << MAX_POSITION_BITS) >>> 0) - 1;
   if (!spec || !Array.isArray(spec.positionSteps) || spec.positionSteps.length !== 3) throw new Error('snapshot format: positionSteps must be 3 integers');
   for (const s of spec.positionSteps) {
-    if (!Number.isInteger(s) || s < 1 || s > cap) throw new Error(`snapshot format: positionSteps must be integers in [1, ${cap}], got ${String(s)}`);
+    if (!Number.isInteger(s) || s < 1 || s > cap) throw new Error(`snapshot format: positionSteps must be integers in [1, ${cap}], got ${describeValue(s)}`);
   }
   const rb = spec.rotationBits;
   if (!Number.isInteger(rb) || rb < MIN_ROTATION_BITS || rb > MAX_ROTATION_BITS) {
-    throw new Error(`snapshot format: rotationBits must be an integer in [${MIN_ROTATION_BITS}, ${MAX_ROTATION_BITS}], got ${String(rb)}`);
+    throw new Error(`snapshot format: rotationBits must be an integer in [${MIN_ROTATION_BITS}, ${MAX_ROTATION_BITS}], got ${describeValue(rb)}`);
   }
   const steps = [spec.positionSteps[0], spec.positionSteps[1], spec.positionSteps[2]] as const;
   const stepMetres = (axis: 'x' | 'y' | 'z', step: number): number => (bounds.max[axis] - bounds.min[axis]) / step;

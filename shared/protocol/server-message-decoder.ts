@@ -1,7 +1,8 @@
-// Decodes server→client frames on the client: msgpack, opcode, field types, descriptors and events are checked, so a
-// broken or hostile server produces a clear error result instead of an exception deep inside the client.
+// Decodes server→client frames on the client: msgpack structure, opcode, field types, descriptors and events are
+// checked, so a broken or hostile server produces a clear error result instead of an exception deep inside the client.
+import { describeValue } from '../sim/describe-value.ts';
 import type { SimEvent } from '../sim/types.ts';
-import { toBytes, unpackFrame } from './codec.ts';
+import { decodeFrame, MAX_SERVER_FRAME_DEPTH, toBytes } from './codec.ts';
 import { unpackDescriptors } from './descriptor-codec.ts';
 import { MAX_TOKEN_LENGTH, TOKEN_PATTERN } from './limits.ts';
 import { PROTOCOL_VERSION, ServerOpcode, type ByeReason, type ErrorCode } from './opcodes.ts';
@@ -24,12 +25,12 @@ function isObject(v: unknown): v is Record<string, unknown> {
 }
 
 function num(v: unknown, what: string): number {
-  need(typeof v === 'number' && Number.isFinite(v), `${what} must be a finite number, got ${String(v)}`);
+  need(typeof v === 'number' && Number.isFinite(v), `${what} must be a finite number, got ${describeValue(v)}`);
   return v;
 }
 
 function int(v: unknown, what: string, min = 0): number {
-  need(typeof v === 'number' && Number.isInteger(v) && v >= min, `${what} must be an integer ≥ ${min}, got ${String(v)}`);
+  need(typeof v === 'number' && Number.isInteger(v) && v >= min, `${what} must be an integer ≥ ${min}, got ${describeValue(v)}`);
   return v;
 }
 
@@ -111,7 +112,7 @@ function decodeEvent(v: unknown, i: number): SimEvent {
   const what = `events[${i}]`;
   need(isObject(v), `${what} must be an object`);
   const type = v.type;
-  need(isEventType(type), `${what}.type ${JSON.stringify(String(type))} is not a known event`);
+  need(isEventType(type), `${what}.type ${describeValue(type)} is not a known event`);
   return readEvent(type, v, int(v.tick, `${what}.tick`), what);
 }
 
@@ -157,7 +158,7 @@ function decode(value: unknown): ServerMessage {
       arity(3, 'bye');
       return { type: 'bye', reason: str(value[1], 'bye.reason') as ByeReason, message: str(value[2], 'bye.message') };
     default:
-      throw new DecodeError(`unknown server opcode ${String(op)}`);
+      throw new DecodeError(`unknown server opcode ${describeValue(op)}`);
   }
 }
 
@@ -172,18 +173,13 @@ function foreignWelcomeVersion(value: unknown): number | null {
 export function decodeServerMessage(data: unknown): ServerDecodeResult {
   const bytes = toBytes(data);
   if (bytes === null) return { ok: false, error: 'expected a binary frame' };
-  let value: unknown;
-  try {
-    value = unpackFrame(bytes);
-  } catch (e) {
-    return { ok: false, error: `not a msgpack value: ${(e as Error).message.slice(0, 120)}` };
-  }
-  const foreign = foreignWelcomeVersion(value);
+  const frame = decodeFrame(bytes, MAX_SERVER_FRAME_DEPTH);
+  if (!frame.ok) return { ok: false, error: `not a plain msgpack value: ${frame.error}` };
+  const foreign = foreignWelcomeVersion(frame.value);
   if (foreign !== null) return { ok: false, error: `the server speaks protocol ${foreign}, this client ${PROTOCOL_VERSION}`, serverVersion: foreign };
   try {
-    return { ok: true, message: decode(value) };
+    return { ok: true, message: decode(frame.value) };
   } catch (e) {
-    if (e instanceof DecodeError || e instanceof Error) return { ok: false, error: e.message };
-    return { ok: false, error: String(e) };
+    return { ok: false, error: e instanceof Error ? e.message : 'the message could not be decoded' };
   }
 }

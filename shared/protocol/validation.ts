@@ -1,9 +1,12 @@
-// Checks every client→server frame: size, msgpack well-formedness, opcode, arity, field types and ranges, finite
-// numbers, and each input command through the one validator (validateInputCommand). Never throws.
+// Checks every client→server frame: size, msgpack structure (plain types, bounded depth), opcode, arity, field types
+// and ranges, finite numbers, and each input command through the one validator (validateInputCommand). Total: never
+// throws for any bytes, and error texts describe values without running any of their code (describeValue).
+import { describeValue } from '../sim/describe-value.ts';
 import { validateInputCommand, type InputCommand } from '../sim/input.ts';
 import type { ClientMessage, HelloMessage } from './client-messages.ts';
-import { toBytes, unpackFrame } from './codec.ts';
+import { decodeFrame, toBytes } from './codec.ts';
 import {
+  MAX_CLIENT_FRAME_DEPTH,
   MAX_CLIENT_MESSAGE_BYTES,
   MAX_CLIENT_TIME_MS,
   MAX_INPUT_COMMANDS_PER_MESSAGE,
@@ -35,7 +38,7 @@ const FORBIDDEN_NAME_CHARS = /[\u0000-\u001f\u007f-\u009f\u202a-\u202e\u2066-\u2
 
 /** Checks a display name; returns the trimmed name or an error sentence. */
 export function checkPlayerName(raw: unknown): { ok: true; name: string } | { ok: false; error: string } {
-  if (typeof raw !== 'string') return { ok: false, error: `name must be a string, got ${typeOf(raw)}` };
+  if (typeof raw !== 'string') return { ok: false, error: `name must be a string, got ${describeValue(raw)}` };
   const name = raw.trim();
   if (name.length === 0) return { ok: false, error: 'name must not be empty' };
   if (name.length > MAX_NAME_LENGTH) return { ok: false, error: `name must be at most ${MAX_NAME_LENGTH} characters, got ${name.length}` };
@@ -48,20 +51,6 @@ export function checkRoomId(raw: unknown): { ok: true; room: string | null } | {
   if (raw === null || raw === undefined) return { ok: true, room: null };
   if (typeof raw !== 'string' || !ROOM_ID_PATTERN.test(raw)) return { ok: false, error: 'room must be null or 1-64 characters of A-Z a-z 0-9 _ -' };
   return { ok: true, room: raw };
-}
-
-function typeOf(v: unknown): string {
-  if (v === null) return 'null';
-  if (Array.isArray(v)) return 'array';
-  if (v instanceof Uint8Array) return 'binary';
-  return typeof v;
-}
-
-/** A short description of a client value for error texts; never calls the value's own conversions. */
-function shown(v: unknown): string {
-  if (typeof v === 'number') return Number.isFinite(v) || Number.isNaN(v) ? `${v}` : v > 0 ? 'Infinity' : '-Infinity';
-  if (typeof v === 'string') return JSON.stringify(v.length > 40 ? `${v.slice(0, 40)}…` : v);
-  return typeOf(v);
 }
 
 /** Whether v is a msgpack map decoded as a plain object (not an array, binary or anything with another prototype). */
@@ -79,7 +68,7 @@ const HELLO_OPTIONS = ['seatToken', 'resumeToken'] as const;
  */
 function decodeHello(fields: unknown[]): ClientDecodeResult {
   const version = fields[1];
-  if (typeof version !== 'number' || !Number.isInteger(version) || version < 0 || version > 0xffff) return bad(`hello.version must be an integer in [0, 65535], got ${shown(version)}`);
+  if (typeof version !== 'number' || !Number.isInteger(version) || version < 0 || version > 0xffff) return bad(`hello.version must be an integer in [0, 65535], got ${describeValue(version)}`);
   if (version !== PROTOCOL_VERSION) {
     return bad(`this server speaks protocol ${PROTOCOL_VERSION} and the client sent protocol ${version}: use a client built for protocol ${PROTOCOL_VERSION}`, ErrorCode.VersionMismatch);
   }
@@ -92,14 +81,14 @@ function decodeHello(fields: unknown[]): ClientDecodeResult {
   const message: HelloMessage = { type: 'hello', version, name: name.name, room: room.room };
   const options = fields[4];
   if (options !== undefined && options !== null) {
-    if (!isPlainMap(options)) return bad(`hello.options must be a map {seatToken?, resumeToken?}, got ${typeOf(options)}`);
+    if (!isPlainMap(options)) return bad(`hello.options must be a map {seatToken?, resumeToken?}, got ${describeValue(options)}`);
     for (const key of Object.keys(options)) {
-      if (!(HELLO_OPTIONS as readonly string[]).includes(key)) return bad(`hello.options has no field ${shown(key)} (known: ${HELLO_OPTIONS.join(', ')})`);
+      if (!(HELLO_OPTIONS as readonly string[]).includes(key)) return bad(`hello.options has no field ${describeValue(key)} (known: ${HELLO_OPTIONS.join(', ')})`);
     }
     for (const key of HELLO_OPTIONS) {
       if (!Object.hasOwn(options, key)) continue;
       const token: unknown = options[key];
-      if (typeof token !== 'string' || !TOKEN_PATTERN.test(token)) return bad(`hello.options.${key} must be 1-${MAX_TOKEN_LENGTH} characters of A-Z a-z 0-9 _ . -, got ${shown(token)}`);
+      if (typeof token !== 'string' || !TOKEN_PATTERN.test(token)) return bad(`hello.options.${key} must be 1-${MAX_TOKEN_LENGTH} characters of A-Z a-z 0-9 _ . -, got ${describeValue(token)}`);
       message[key] = token;
     }
   }
@@ -114,7 +103,7 @@ function decodeInput(fields: unknown[]): ClientDecodeResult {
   const wrong = arity(fields, 3, 'input');
   if (wrong) return wrong;
   const [, firstTick, list] = fields;
-  if (!isTick(firstTick)) return bad(`input.firstTick must be an integer tick in [0, ${MAX_TICK}], got ${String(firstTick)}`, ErrorCode.BadInput);
+  if (!isTick(firstTick)) return bad(`input.firstTick must be an integer tick in [0, ${MAX_TICK}], got ${describeValue(firstTick)}`, ErrorCode.BadInput);
   if (!Array.isArray(list) || list.length === 0 || list.length > MAX_INPUT_COMMANDS_PER_MESSAGE) {
     return bad(`input.commands must be an array of 1..${MAX_INPUT_COMMANDS_PER_MESSAGE} commands`, ErrorCode.BadInput);
   }
@@ -136,16 +125,13 @@ function decodeInput(fields: unknown[]): ClientDecodeResult {
 export function decodeClientMessage(data: unknown, maxBytes: number = MAX_CLIENT_MESSAGE_BYTES): ClientDecodeResult {
   if (typeof data === 'string') return bad('text frames are not accepted: send binary msgpack', ErrorCode.Malformed);
   const bytes = toBytes(data);
-  if (bytes === null) return bad(`expected binary data, got ${typeOf(data)}`, ErrorCode.Malformed);
+  if (bytes === null) return bad(`expected binary data, got ${describeValue(data)}`, ErrorCode.Malformed);
   if (bytes.length > maxBytes) return bad(`message of ${bytes.length} bytes exceeds the ${maxBytes}-byte limit`, ErrorCode.Oversize);
   if (bytes.length === 0) return bad('empty message', ErrorCode.Malformed);
-  let value: unknown;
-  try {
-    value = unpackFrame(bytes);
-  } catch (e) {
-    return bad(`not a msgpack value: ${(e as Error).message.slice(0, 120)}`, ErrorCode.Malformed);
-  }
-  if (!Array.isArray(value) || value.length === 0) return bad(`message must be an array [opcode, ...fields], got ${typeOf(value)}`);
+  const frame = decodeFrame(bytes, MAX_CLIENT_FRAME_DEPTH);
+  if (!frame.ok) return bad(`not a plain msgpack value: ${frame.error}`, ErrorCode.Malformed);
+  const value = frame.value;
+  if (!Array.isArray(value) || value.length === 0) return bad(`message must be an array [opcode, ...fields], got ${describeValue(value)}`);
   const op = value[0];
   switch (op) {
     case ClientOpcode.Hello:
@@ -155,14 +141,14 @@ export function decodeClientMessage(data: unknown, maxBytes: number = MAX_CLIENT
     case ClientOpcode.SnapshotAck: {
       const wrong = arity(value, 2, 'ack');
       if (wrong) return wrong;
-      if (!isTick(value[1])) return bad(`ack.tick must be an integer tick in [0, ${MAX_TICK}], got ${String(value[1])}`);
+      if (!isTick(value[1])) return bad(`ack.tick must be an integer tick in [0, ${MAX_TICK}], got ${describeValue(value[1])}`);
       return { ok: true, message: { type: 'ack', tick: value[1] }, clampedCommands: 0 };
     }
     case ClientOpcode.Ping: {
       const wrong = arity(value, 2, 'ping');
       if (wrong) return wrong;
       const t = value[1];
-      if (typeof t !== 'number' || !Number.isFinite(t) || Math.abs(t) > MAX_CLIENT_TIME_MS) return bad(`ping.clientTimeMs must be a finite number within ±${MAX_CLIENT_TIME_MS}, got ${String(t)}`);
+      if (typeof t !== 'number' || !Number.isFinite(t) || Math.abs(t) > MAX_CLIENT_TIME_MS) return bad(`ping.clientTimeMs must be a finite number within ±${MAX_CLIENT_TIME_MS}, got ${describeValue(t)}`);
       return { ok: true, message: { type: 'ping', clientTimeMs: t }, clampedCommands: 0 };
     }
     case ClientOpcode.Bye: {
@@ -171,6 +157,6 @@ export function decodeClientMessage(data: unknown, maxBytes: number = MAX_CLIENT
       return { ok: true, message: { type: 'bye' }, clampedCommands: 0 };
     }
     default:
-      return bad(`unknown opcode ${typeof op === 'number' ? op : typeOf(op)}`);
+      return bad(`unknown opcode ${describeValue(op)}`);
   }
 }

@@ -1,5 +1,6 @@
 // Player input commands: the quantized wire/log form, the one validator every input passes, and conversions.
 // Everything a player can influence enters the simulation through a validated InputCommand; nothing else reaches Jolt.
+import { describeValue } from './describe-value.ts';
 
 /** Button bits of InputCommand.buttons. */
 export const Button = {
@@ -35,37 +36,57 @@ export const NEUTRAL_INPUT: Readonly<InputCommand> = Object.freeze({ moveX: 0, m
 /** The result of validating untrusted input: a clean command, or the reason it was rejected. */
 export type InputValidation = { ok: true; command: InputCommand; clamped: boolean } | { ok: false; error: string };
 
+/**
+ * The canonical integer nearest to a finite number: rounded half up, then +0 for any zero. Math.round(-0.3) is −0,
+ * and −0 must never reach the simulation: its sign survives arithmetic (a walk velocity of −0), the state hash sees
+ * those bits, and the log cannot store it.
+ */
+function canonicalInt(value: number): number {
+  return Math.round(value) + 0;
+}
+
 function intIn(value: unknown, min: number, max: number, field: string): { v: number; clamped: boolean } | string {
-  if (typeof value !== 'number') return `${field} must be a number, got ${value === null ? 'null' : typeof value}`;
-  if (!Number.isFinite(value)) return `${field} must be finite, got ${String(value)}`;
-  const r = Math.round(value);
+  if (typeof value !== 'number') return `${field} must be a number, got ${describeValue(value)}`;
+  if (!Number.isFinite(value)) return `${field} must be finite, got ${describeValue(value)}`;
+  const r = canonicalInt(value);
   if (r < min) return { v: min, clamped: true };
   if (r > max) return { v: max, clamped: true };
   return { v: r, clamped: r !== value };
 }
 
-/**
- * The one validator for untrusted input (network, log, bots). Wrong types, NaN and Infinity are rejected;
- * out-of-range numbers are clamped (yaw wraps); unknown button bits are dropped. Never throws.
- */
-export function validateInputCommand(raw: unknown): InputValidation {
-  if (raw === null || typeof raw !== 'object' || Array.isArray(raw)) return { ok: false, error: 'input must be an object' };
-  const r = raw as Record<string, unknown>;
+function validate(r: Record<string, unknown>): InputValidation {
   const moveX = intIn(r.moveX, -MOVE_STEPS, MOVE_STEPS, 'moveX');
   if (typeof moveX === 'string') return { ok: false, error: moveX };
   const moveZ = intIn(r.moveZ, -MOVE_STEPS, MOVE_STEPS, 'moveZ');
   if (typeof moveZ === 'string') return { ok: false, error: moveZ };
   const pitch = intIn(r.pitch, -PITCH_STEPS, PITCH_STEPS, 'pitch');
   if (typeof pitch === 'string') return { ok: false, error: pitch };
-  if (typeof r.yaw !== 'number' || !Number.isFinite(r.yaw)) return { ok: false, error: `yaw must be a finite number, got ${String(r.yaw)}` };
-  const yawRounded = Math.round(r.yaw);
-  const yaw = ((yawRounded % YAW_STEPS) + YAW_STEPS) % YAW_STEPS;
-  if (typeof r.buttons !== 'number' || !Number.isInteger(r.buttons) || r.buttons < 0) {
-    return { ok: false, error: `buttons must be a non-negative integer bit set, got ${String(r.buttons)}` };
+  const rawYaw = r.yaw;
+  if (typeof rawYaw !== 'number' || !Number.isFinite(rawYaw)) return { ok: false, error: `yaw must be a finite number, got ${describeValue(rawYaw)}` };
+  // Yaw wraps into [0, YAW_STEPS) (the remainder of a huge yaw is exact).
+  const yaw = ((canonicalInt(rawYaw) % YAW_STEPS) + YAW_STEPS) % YAW_STEPS;
+  const rawButtons = r.buttons;
+  if (typeof rawButtons !== 'number' || !Number.isInteger(rawButtons) || rawButtons < 0) {
+    return { ok: false, error: `buttons must be a non-negative integer bit set, got ${describeValue(rawButtons)}` };
   }
-  const buttons = r.buttons & BUTTON_MASK;
-  const clamped = moveX.clamped || moveZ.clamped || pitch.clamped || yaw !== r.yaw || buttons !== r.buttons;
+  const buttons = rawButtons & BUTTON_MASK;
+  const clamped = moveX.clamped || moveZ.clamped || pitch.clamped || yaw !== rawYaw || buttons !== rawButtons;
   return { ok: true, command: { moveX: moveX.v, moveZ: moveZ.v, yaw, pitch: pitch.v, buttons }, clamped };
+}
+
+/**
+ * The one validator for untrusted input (network, log, bots): returns the canonical command (integers in range,
+ * never −0) that the simulation, the log and the state hash all use. Wrong types, NaN and Infinity are rejected;
+ * out-of-range numbers are clamped (yaw wraps); unknown button bits are dropped. Total: never throws, whatever
+ * `raw` is (getters, Proxies and toString/valueOf keys included), and runs none of its code in error texts.
+ */
+export function validateInputCommand(raw: unknown): InputValidation {
+  try {
+    if (raw === null || typeof raw !== 'object' || Array.isArray(raw)) return { ok: false, error: 'input must be an object' };
+    return validate(raw as Record<string, unknown>);
+  } catch {
+    return { ok: false, error: 'input could not be read (a field threw when read)' };
+  }
 }
 
 /** Quantizes float controls (move axes in [-1, 1], yaw/pitch in radians) into a command. */
@@ -75,10 +96,10 @@ export function quantizeInput(moveX: number, moveZ: number, yawRadians: number, 
   const turn = fin(yawRadians) / (2 * Math.PI);
   const yaw = ((Math.round((turn - Math.floor(turn)) * YAW_STEPS) % YAW_STEPS) + YAW_STEPS) % YAW_STEPS;
   return {
-    moveX: Math.round(clamp(fin(moveX), -1, 1) * MOVE_STEPS),
-    moveZ: Math.round(clamp(fin(moveZ), -1, 1) * MOVE_STEPS),
+    moveX: canonicalInt(clamp(fin(moveX), -1, 1) * MOVE_STEPS),
+    moveZ: canonicalInt(clamp(fin(moveZ), -1, 1) * MOVE_STEPS),
     yaw,
-    pitch: Math.round(clamp(fin(pitchRadians) / (Math.PI / 2), -1, 1) * PITCH_STEPS),
+    pitch: canonicalInt(clamp(fin(pitchRadians) / (Math.PI / 2), -1, 1) * PITCH_STEPS),
     buttons: (buttons >>> 0) & BUTTON_MASK,
   };
 }

@@ -1,5 +1,6 @@
 // The scenario contract: a declarative, seeded scene module (name, parameters, static scene, per-tick hook, spawn
 // points, render hints). Scenarios live in scenarios/; the Simulation builds and drives them through this interface.
+import { describeValue } from './describe-value.ts';
 import type { BodyHandle, BodyOptions, PhysicsWorldOptions, QuatLike, ShapeSpec, Vec3Like } from '../physics/index.ts';
 import type { Prng } from './prng.ts';
 import type { CharacterState, PlayerCommand, SimEvent } from './types.ts';
@@ -105,7 +106,7 @@ export function resolveParams(def: ScenarioDefinition, given: Readonly<Record<st
   }
   for (const [key, spec] of Object.entries(def.params)) {
     const value = Object.prototype.hasOwnProperty.call(given, key) ? given[key] : spec.default;
-    if (typeof value !== 'number' || !Number.isFinite(value)) throw new Error(`scenario ${def.name}: parameter ${key} must be a finite number, got ${String(value)}`);
+    if (typeof value !== 'number' || !Number.isFinite(value)) throw new Error(`scenario ${def.name}: parameter ${key} must be a finite number, got ${describeValue(value)}`);
     if (spec.integer && !Number.isInteger(value)) throw new Error(`scenario ${def.name}: parameter ${key} must be an integer, got ${value}`);
     if (value < spec.min || value > spec.max) throw new Error(`scenario ${def.name}: parameter ${key} must be in [${spec.min}, ${spec.max}], got ${value}`);
     out[key] = value;

@@ -1,5 +1,6 @@
 // Validation of one tick's input record before anything of it is applied: the tick number, sorted unique player
 // ids, leaves of present players, joins of absent ones, and every command re-checked by validateInputCommand.
+import { describeValue } from './describe-value.ts';
 import { validateInputCommand, type InputCommand } from './input.ts';
 import type { PlayerCommand, PlayerJoin, TickInputRecord } from './types.ts';
 
@@ -24,7 +25,7 @@ function utf8Length(text: string): number {
 
 function playerId(value: unknown, where: string): number {
   if (typeof value !== 'number' || !Number.isInteger(value) || value < 0 || value > MAX_PLAYER_ID) {
-    throw new Error(`${where}: player id must be an integer in [0, ${MAX_PLAYER_ID}], got ${String(value)}`);
+    throw new Error(`${where}: player id must be an integer in [0, ${MAX_PLAYER_ID}], got ${describeValue(value)}`);
   }
   return value;
 }
@@ -49,7 +50,7 @@ export function validateTickRecord(raw: unknown, expectedTick: number, isPresent
   if (raw === null || typeof raw !== 'object' || Array.isArray(raw)) throw new Error('step: the tick input record must be an object');
   const rec = raw as Record<string, unknown>;
   if (rec.tick !== expectedTick) {
-    throw new Error(`step: record for tick ${String(rec.tick)} given, but the simulation is at tick ${expectedTick} (records apply in order)`);
+    throw new Error(`step: record for tick ${describeValue(rec.tick)} given, but the simulation is at tick ${expectedTick} (records apply in order)`);
   }
   const where = `step(tick ${expectedTick})`;
   const leaves = array(rec.leaves, `${where}: leaves`).map((id) => playerId(id, `${where} leave`));

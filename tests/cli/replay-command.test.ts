@@ -80,6 +80,18 @@ describe('replay-command', () => {
     expect(text.stderr).toMatch(new RegExp(`^CORRUPT LOG at record #${victim.index} \\(byte offset ${victim.offset}\\): bad CRC in tick record`));
   });
 
+  it('reports a well-framed record the simulation cannot apply as corruption at that record', async () => {
+    const tampered = retouchTick(log, 60, (rec) => {
+      rec.joins = [{ playerId: rec.commands[0].playerId, name: 'again' }]; // a player who is already in the game
+    });
+    const victim = entriesOf(tampered).find((e) => e.type === 'tick' && e.record.tick === 60)!;
+    const path = join(dir, 'unapplicable.tlog');
+    await writeFile(path, tampered);
+    const out = jsonOut(await cli('replay', path, '--json'));
+    expect(out).toMatchObject({ status: 'corrupt', log: 'corrupt', ticks: 60, hashesChecked: 61 });
+    expect(out.corruption).toMatchObject({ recordIndex: victim.index, byteOffset: victim.offset, reason: expect.stringMatching(/^the simulation cannot apply tick record 60: .*cannot join, it is already in the game/) });
+  });
+
   it('replays the whole records of a truncated log and says the tail was dropped', async () => {
     const cutAt = entriesOf(log).find((e) => e.type === 'tick' && e.record.tick === 100)!;
     const path = join(dir, 'truncated.tlog');

@@ -1,5 +1,6 @@
 // Tests for server/client-session.ts: every kind of bad client traffic gets an error or a disconnect with a reason,
 // the other players' world is untouched (identical hash sequence), slow readers get snapshots skipped, not queued.
+import { pino } from 'pino';
 import { afterEach, describe, expect, it } from 'vitest';
 import { ByeReason, ClientOpcode, ErrorCode, packValue, PROTOCOL_VERSION } from '../../shared/protocol/index.ts';
 import { Button, NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input.ts';
@@ -159,6 +160,36 @@ describe('ClientSession', () => {
     await h.settle(() => c.closed !== null);
     expect(errorCodes(c)).toEqual([ErrorCode.RoomNotFound]);
     expect(byes(c)[0]?.reason).toBe(ByeReason.RoomNotFound);
+  });
+
+  it('makes an exception while handling a message that client\'s error and bye, logged once, and the room goes on', async () => {
+    const lines: Array<{ level: number; msg: string }> = [];
+    const logger = pino({ level: 'info' }, { write: (line: string) => void lines.push(JSON.parse(line) as { level: number; msg: string }) });
+    h = await startHarness({ scenarios: [stripScenario], logger });
+    const a = await h.join('ann');
+    const b = await h.join('bob');
+    const room = h.room();
+    const offer = room.offerInput.bind(room);
+    // A stand-in for a server bug that only this client's messages reach.
+    room.offerInput = (playerId, tick, command) => {
+      if (playerId === a.playerId) throw new Error('injected fault');
+      return offer(playerId, tick, command);
+    };
+    const tick = room.sim.tick + 2;
+    for (let i = 0; i < 3; i++) a.input(tick + i, [walk(127)]); // only the first is read: the session has ended
+    b.input(tick, [walk(-127)]);
+    h.ticks(3);
+    expect(a.ofType('error')).toEqual([{ type: 'error', code: ErrorCode.Internal, message: 'the server failed while handling your message' }]);
+    expect(byes(a)).toEqual([{ type: 'bye', reason: ByeReason.Kicked, message: 'internal error handling your message' }]);
+    expect(a.closed?.code).toBe(1011);
+    expect(lines.filter((l) => l.level >= 50).map((l) => l.msg)).toEqual(['handling a client message failed; disconnecting the client']);
+    expect(await h.server.metrics.registry.getSingleMetricAsString('taos_message_errors_total')).toMatch(/ 1$/);
+    const framesBefore = b.frames.length;
+    h.ticks(10);
+    expect(b.closed).toBeNull();
+    expect(b.frames.length).toBeGreaterThan(framesBefore);
+    expect(room.closed).toBe(false);
+    expect(room.clientCount).toBe(1);
   });
 
   it('keeps the room\'s hash sequence identical when hostile clients join the traffic', async () => {

@@ -1,10 +1,10 @@
 // Tests for server/game-server.ts through the in-process harness: joining, moving, seeing each other in decoded
 // snapshots, trigger events on both clients, leaving, late joiners, and decoded frames equal to the server's.
 import { afterEach, describe, expect, it } from 'vitest';
-import { CharacterQ, createSnapshotFormat, dequantizeAxis, framesEqual, quantizeFrame, readSnapshotHeader, type QuantizedFrame } from '../../shared/protocol/index.ts';
+import { ByeReason, CharacterQ, createSnapshotFormat, dequantizeAxis, framesEqual, quantizeFrame, readSnapshotHeader, type QuantizedFrame } from '../../shared/protocol/index.ts';
 import { NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input.ts';
 import { startHarness, type Harness, type TestClient } from './harness.ts';
-import { STREAM_ADD_TICK, STREAM_REMOVE_TICK, streamScenario, stripScenario, TRIGGER_MIN_X } from './test-scenarios.ts';
+import { emptyScenario, STREAM_ADD_TICK, STREAM_REMOVE_TICK, streamScenario, stripScenario, TRIGGER_MIN_X } from './test-scenarios.ts';
 
 let h: Harness | null = null;
 afterEach(async () => {
@@ -115,6 +115,27 @@ describe('GameServer (in-process)', () => {
     h.ticks(STREAM_REMOVE_TICK - STREAM_ADD_TICK);
     expect(Array.from(early.latestFrame().bodyIds)).not.toContain(tile!.id);
     expect(late.events).toContainEqual(expect.objectContaining({ type: 'bodyRemoved', bodyId: tile!.id }));
+  });
+
+  it('closes only the room whose tick throws; the other room and its players go on', async () => {
+    h = await startHarness({ scenarios: [stripScenario, emptyScenario] });
+    const a = await h.join('ann');
+    const b = await h.join('bob', 'test-empty');
+    const broken = h.room('test-empty');
+    broken.sim.step = () => {
+      throw new Error('injected tick fault');
+    };
+    const tickBefore = h.room().sim.tick;
+    const framesBefore = a.frames.length;
+    h.ticks(30);
+    await h.settle(() => broken.closed);
+    expect(broken.closed).toBe(true);
+    expect(h.server.rooms.get('test-empty')).toBeUndefined();
+    expect(b.ofType('bye')[0]).toMatchObject({ reason: ByeReason.RoomClosed, message: expect.stringMatching(/injected tick fault/) });
+    h.ticks(30);
+    expect(a.closed).toBeNull();
+    expect(h.room().sim.tick).toBeGreaterThan(tickBefore + 50);
+    expect(a.frames.length).toBeGreaterThan(framesBefore + 20);
   });
 
   it('refuses connections past the server\'s limit with a bye saying why', async () => {

@@ -4,7 +4,7 @@ import '../../server/physics-node.ts';
 import type { SeatTokens } from '../../server/access/seat-tokens.ts';
 import type { SessionLimits } from '../../server/client-session.ts';
 import { GameServer } from '../../server/game-server.ts';
-import { silentLogger } from '../../server/logger.ts';
+import { silentLogger, type Logger } from '../../server/logger.ts';
 import { memoryPeerConnection } from '../../server/memory-peer.ts';
 import { MemoryNetwork, type MemoryNetworkOptions, type MemoryTransport } from '../../sdk/index.ts';
 import { createMetrics } from '../../server/metrics.ts';
@@ -54,6 +54,8 @@ export interface HarnessOptions {
   resumeGraceMs?: number;
   seats?: SeatTokens | null;
   requireSeat?: boolean;
+  /** The server's logger (default: silent). */
+  logger?: Logger;
 }
 
 /** A protocol-level client: records every decoded message; decodes and acks snapshots. */
@@ -152,7 +154,7 @@ export interface Harness {
 /** Starts a harness server with its default room. */
 export async function startHarness(opts: HarnessOptions): Promise<Harness> {
   const clock = new ManualClock();
-  const logger = silentLogger();
+  const logger = opts.logger ?? silentLogger();
   const server = await GameServer.create({
     factory: createRoomFactory({ scenarios: scenarioList(opts.scenarios), logger, recordDir: opts.recordDir ?? null }),
     defaultScenario: opts.defaultScenario ?? opts.scenarios[0].name,

@@ -1,10 +1,12 @@
 // Tests of the client-side decoder of server frames: malformed data, unknown opcodes, wrong field types, bad
 // descriptors and unknown events become error results that name the field, never exceptions.
 import { describe, expect, it } from 'vitest';
-import { encodeServerMessage, packValue, unpackFrame } from '../../../shared/protocol/codec.ts';
+import { decodeFrame, encodeServerMessage, packValue, unpackFrame } from '../../../shared/protocol/codec.ts';
+import { parseShape, unpackDescriptors } from '../../../shared/protocol/descriptor-codec.ts';
 import { PROTOCOL_VERSION, ServerOpcode } from '../../../shared/protocol/opcodes.ts';
 import { decodeServerMessage } from '../../../shared/protocol/server-message-decoder.ts';
 import { Prng } from '../../../shared/sim/prng.ts';
+import { frameHex, hostileFrame } from '../../helpers/hostile-frames.ts';
 import { sampleWelcome } from './sample-messages.ts';
 
 function errorOf(data: unknown): string {
@@ -16,7 +18,7 @@ function errorOf(data: unknown): string {
 describe('server-message-decoder', () => {
   it('rejects non-binary, non-msgpack and non-array frames', () => {
     expect(errorOf('hi')).toMatch(/binary/);
-    expect(errorOf(new Uint8Array([0x92, 1]))).toMatch(/not a msgpack value/);
+    expect(errorOf(new Uint8Array([0x92, 1]))).toMatch(/^not a plain msgpack value: byte 0: a container of 2 values, but only 1 bytes follow/);
     expect(errorOf(packValue({ a: 1 }))).toMatch(/array \[opcode/);
     expect(errorOf(packValue([3]))).toBe('unknown server opcode 3');
   });
@@ -75,5 +77,44 @@ describe('server-message-decoder', () => {
       const r = decodeServerMessage(bytes);
       if (!r.ok) expect(typeof r.error).toBe('string');
     }
+  });
+
+  it('never throws on 20,000 generated hostile frames and answers each with an error sentence', () => {
+    const rng = new Prng(0xdec0de);
+    const problems: string[] = [];
+    for (let i = 0; i < 20_000; i++) {
+      const frame = hostileFrame(rng, 100);
+      try {
+        const r = decodeServerMessage(frame.data);
+        if (!r.ok && (typeof r.error !== 'string' || r.error.includes('[object'))) problems.push(`odd error ${String(r.error)} for ${frameHex(frame)}`);
+      } catch (error) {
+        problems.push(`threw ${(error as Error).message} on ${frameHex(frame)}`);
+      }
+    }
+    expect(problems.slice(0, 5)).toEqual([]);
+  });
+
+  it('refuses every decoded hostile value as a shape or descriptor table with an Error naming the field', () => {
+    const rng = new Prng(0x5ba9e);
+    const problems: string[] = [];
+    let tried = 0;
+    for (let i = 0; i < 20_000; i++) {
+      const frame = hostileFrame(rng, 100);
+      if (typeof frame.data === 'string') continue;
+      const decoded = decodeFrame(frame.data);
+      if (!decoded.ok) continue;
+      const v = decoded.value;
+      tried++;
+      const row = [1, 0, 1, 1, 1, 1, 0, -1, 0, 0, 0, 0, 0, 0, 1];
+      for (const parse of [() => parseShape(v), () => unpackDescriptors(v), () => unpackDescriptors([[v], [row]]), () => unpackDescriptors([[{ kind: 'sphere', radius: 1 }], [v]])]) {
+        try {
+          parse();
+        } catch (error) {
+          if (!(error instanceof Error) || !error.message.startsWith('descriptor ') || error.message.includes('[object')) problems.push(`${String(error)} for ${frameHex(frame)}`);
+        }
+      }
+    }
+    expect(problems.slice(0, 5)).toEqual([]);
+    expect(tried).toBeGreaterThan(5000);
   });
 });
