@@ -1,0 +1,58 @@
+// Child process of the room-churn test (run with --expose-gc): a real server on loopback opens and closes rooms over
+// and over (every other room with two WebSocket players in it) and prints Node's external memory and RSS, after
+// full GCs, at the baseline (after a warm-up) and after the cycles, as one JSON line on stdout.
+// Run: node --expose-gc tests/server/room-churn-probe.ts [--cycles 50] [--warmup 6] [--scenario character-course]
+import { silentLogger } from '../../server/logger.ts';
+import { createMetrics } from '../../server/metrics.ts';
+import { startServer } from '../../server/start-server.ts';
+import { WsTestClient } from './ws-client.ts';
+
+function arg(name: string, fallback: string): string {
+  const i = process.argv.indexOf(`--${name}`);
+  return i >= 0 && i + 1 < process.argv.length ? process.argv[i + 1] : fallback;
+}
+
+const cycles = Number(arg('cycles', '50'));
+const warmup = Number(arg('warmup', '6'));
+const scenario = arg('scenario', 'character-course');
+const gc = (globalThis as { gc?: () => void }).gc;
+if (!gc) throw new Error('room-churn-probe: run with node --expose-gc');
+
+/** Memory after GC has run to a fixed point (WASM memories are freed when their last reference is collected). */
+async function settledMemory(): Promise<{ externalBytes: number; rssBytes: number; arrayBuffersBytes: number; heapUsedBytes: number }> {
+  for (let i = 0; i < 6; i++) {
+    gc!();
+    await new Promise((r) => setTimeout(r, 50));
+  }
+  const m = process.memoryUsage();
+  return { externalBytes: m.external, rssBytes: m.rss, arrayBuffersBytes: m.arrayBuffers, heapUsedBytes: m.heapUsed };
+}
+
+const server = await startServer({ port: 0, host: '127.0.0.1', scenario, logger: silentLogger(), metrics: createMetrics({ processMetrics: false }), maxRooms: 4 });
+
+async function cycle(i: number): Promise<void> {
+  const id = `churn-${i}`;
+  const room = await server.game.rooms.create(id, scenario, {});
+  const players: WsTestClient[] = [];
+  if (i % 2 === 1) {
+    for (let p = 0; p < 2; p++) players.push(await WsTestClient.join(server.wsUrl, `p${p}`, id));
+    for (const c of players) await c.waitFor(() => c.frames.length >= 3, 10_000, 'three snapshots');
+  }
+  await room.close(`churn cycle ${i}`);
+  for (const c of players) await c.waitFor(() => c.closed !== null, 10_000, 'the room-closed bye');
+}
+
+let n = 0;
+for (; n < warmup; n++) await cycle(n);
+const before = await settledMemory();
+const trace: Array<{ cycle: number; externalBytes: number; rssBytes: number; heapUsedBytes: number }> = [];
+for (let k = 0; k < cycles; k++, n++) {
+  await cycle(n);
+  if ((k + 1) % 5 === 0) {
+    const m = await settledMemory();
+    trace.push({ cycle: k + 1, externalBytes: m.externalBytes, rssBytes: m.rssBytes, heapUsedBytes: m.heapUsedBytes });
+  }
+}
+const after = await settledMemory();
+await server.close('probe done');
+process.stdout.write(`${JSON.stringify({ cycles, warmup, scenario, before, after, trace })}\n`);
