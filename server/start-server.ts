@@ -10,9 +10,10 @@ import { resolveParams } from '../shared/sim/scenario.ts';
 import { SystemClock, type Clock } from './clock.ts';
 import type { SessionLimits } from './client-session.ts';
 import { GameServer } from './game-server.ts';
+import { createHttpApi } from './http-api.ts';
 import { createHttpServer } from './http-server.ts';
 import { createLogger, flushLogger, type Logger } from './logger.ts';
-import { createMetrics, renderMetrics, type ServerMetrics } from './metrics.ts';
+import { createMetrics, type ServerMetrics } from './metrics.ts';
 import { createRoomFactory, type ScenarioSource } from './room-factory.ts';
 import { createStaticHandler } from './static-files.ts';
 import { attachWsGateway } from './ws-gateway.ts';
@@ -106,20 +107,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
 
   const staticFiles = createStaticHandler(opts.clientDir ?? DEFAULT_CLIENT_DIR);
   const http = createHttpServer(
-    {
-      health: () => game.health(),
-      listRooms: () => game.listRooms(),
-      listScenarios: () => scenarios.names().map((n) => {
-        const s = scenarios.get(n)!;
-        return { name: s.name, description: s.description, params: s.params };
-      }),
-      createRoom: async (req) => {
-        const room = req.roomId !== undefined ? await game.rooms.resolve({ roomId: req.roomId, scenario: req.scenario, params: req.params }) : await game.rooms.resolve({ scenario: req.scenario, params: req.params });
-        return room.info();
-      },
-      metrics: () => renderMetrics(metrics),
-      staticFiles,
-    },
+    createHttpApi({ game, scenarios, metrics, logger, staticFiles }),
     (error) => logger.error({ err: error }, 'HTTP request failed'),
   );
   const gateway = attachWsGateway(http, {
