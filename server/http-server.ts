@@ -2,6 +2,7 @@
 // Routing and request parsing only; what the answers contain comes from the HttpApi the server passes in. Every
 // refusal is answered as `{error: code, message}` (server/http-errors.ts).
 import { createServer, type IncomingMessage, type RequestListener, type Server, type ServerResponse } from 'node:http';
+import { createServer as createHttpsServer, type Server as HttpsServer } from 'node:https';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import { HttpError, HttpErrorCode, sendError, sendJson } from './http-errors.ts';
 import { RoomError, type RoomInfo } from './room.ts';
@@ -194,7 +195,8 @@ export function createRequestHandler(api: HttpApi, onError?: (error: unknown) =>
   };
 }
 
-/** A plain-HTTP server answering the routes above. */
-export function createHttpServer(api: HttpApi, onError?: (error: unknown) => void): Server {
-  return createServer(createRequestHandler(api, onError));
+/** An HTTP server answering the routes above; HTTPS with `tls` (PEM certificate chain and key). */
+export function createHttpServer(api: HttpApi, onError?: (error: unknown) => void, tls?: { cert: string | Buffer; key: string | Buffer }): Server | HttpsServer {
+  const handler = createRequestHandler(api, onError);
+  return tls ? createHttpsServer({ cert: tls.cert, key: tls.key }, handler) : createServer(handler);
 }

@@ -1,6 +1,7 @@
 // The clients-per-core figure's server process: startServer (HTTP + ws on loopback, the scene's default room, 30 Hz
-// snapshots) with the connection caps lifted, every room tick timed. Prints {"wsUrl"} when listening; stdin commands:
-// "mark" starts a measurement window, "report" prints the window's tick times and snapshot counts as one JSON line.
+// snapshots) with the connection caps (total and per address) lifted, every room tick timed. Prints {"wsUrl"} when
+// listening; stdin commands: "mark" starts a measurement window, "report" prints the window's tick times and snapshot
+// counts as one JSON line.
 // Run: node bench/procs/bench-server.ts SCENARIO PARAMS_JSON SNAPSHOT_HZ MAX_CLIENTS
 import { createInterface } from 'node:readline';
 import { silentLogger } from '../../server/logger.ts';
@@ -24,6 +25,8 @@ const server = await startServer({
   snapshotRateHz,
   maxClients,
   maxConnections: maxClients + 16,
+  // Every bot comes from 127.0.0.1: lift the per-address connection caps.
+  connectionPolicy: { maxSocketsPerAddress: Infinity, maxPendingPerAddress: Infinity },
   logger: silentLogger(),
   metrics,
 });
