@@ -2,6 +2,7 @@
 // it is refused, cut or kicked. A third sit idle without a hello, a third send garbage until kicked, a third say hello
 // and flood pings until kicked. Runs until stdin closes or the time is up; prints its counters as one JSON line.
 // Run: node tests/server/storm-probe.ts ws://127.0.0.1:PORT/ [--sockets 300] [--seconds 30] [--from 127.0.0.1]
+//      [--kinds idle,garbage,flood]
 import { encodeClientMessage, PROTOCOL_VERSION } from '../../shared/protocol/index.ts';
 import { maskedFrame, openRawWs, type RawWs } from './raw-ws.ts';
 
@@ -67,9 +68,10 @@ async function hostile(kind: Kind): Promise<void> {
   }
 }
 
-const kinds: Kind[] = ['idle', 'garbage', 'flood'];
+const kinds = arg('kinds', 'idle,garbage,flood').split(',') as Kind[];
+if (kinds.length === 0 || kinds.some((k) => k !== 'idle' && k !== 'garbage' && k !== 'flood')) throw new Error('--kinds takes idle, garbage and/or flood');
 const started = performance.now();
-const runs = Array.from({ length: sockets }, (_, i) => hostile(kinds[i % 3]));
+const runs = Array.from({ length: sockets }, (_, i) => hostile(kinds[i % kinds.length]));
 const stop = (): void => {
   stopping = true;
 };
