@@ -23,6 +23,8 @@ export const HttpErrorCode = {
   /** The default room cannot be closed over HTTP. */
   DefaultRoom: 'default-room',
   NotFound: 'not-found',
+  /** A path outside what the server serves. */
+  Forbidden: 'forbidden',
   MethodNotAllowed: 'method-not-allowed',
   BodyTooLarge: 'body-too-large',
   /** The rooms limit is reached, or the server has no physics memory left for another room. */

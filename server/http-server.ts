@@ -176,7 +176,7 @@ async function route(api: HttpApi, req: IncomingMessage, res: ServerResponse): P
   }
   if (path.startsWith('/api/')) throw new HttpError(404, HttpErrorCode.NotFound, `no API route ${path.slice(0, 100)} (see /api/rooms, /api/scenarios)`);
   if (await api.staticFiles(req, res)) return;
-  res.writeHead(405, { 'content-type': 'text/plain; charset=utf-8', allow: 'GET, HEAD' }).end(`${method} not allowed\n`);
+  throw notAllowed(method, path, 'GET, HEAD');
 }
 
 /** The request handler of the routes above; never throws (refusals answer their status, failures 500). */
