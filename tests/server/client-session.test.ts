@@ -3,7 +3,8 @@
 import { afterEach, describe, expect, it } from 'vitest';
 import { ByeReason, ErrorCode, packValue } from '../../shared/protocol/index.ts';
 import { Button, NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input.ts';
-import { startHarness, type Harness, type TestClient } from './harness.ts';
+import { createMemoryLink } from '../../server/memory-link.ts';
+import { startHarness, TestClient, type Harness } from './harness.ts';
 import { stripScenario } from './test-scenarios.ts';
 
 let h: Harness | null = null;
@@ -145,6 +146,39 @@ describe('ClientSession', () => {
     h.ticks(40);
     expect(byes(silent)[0]?.reason).toBe(ByeReason.Timeout);
     expect(byes(old)[0]?.reason).toBe(ByeReason.VersionMismatch);
+  });
+
+  it('tells its connection about the hello and about kicks for misbehaviour, not about other endings', async () => {
+    h = await startHarness({ scenarios: [stripScenario], limits: { helloTimeoutMs: 500 } });
+    const conduct = new Map<string, string[]>();
+    // Client ends whose server side records what the session reports to its transport (the ws gateway's policy).
+    const watched = (name: string): TestClient => {
+      const link = createMemoryLink({ clock: h!.clock, remote: name });
+      const seen: string[] = [];
+      conduct.set(name, seen);
+      h!.server.accept(Object.assign(link.server, { helloed: () => seen.push('hello'), kicked: (reason: string) => seen.push(`kicked: ${reason}`) }));
+      return new TestClient(link.client);
+    };
+    const polite = watched('polite');
+    polite.hello('polite');
+    const silent = watched('silent');
+    const garbage = watched('garbage');
+    for (let i = 0; i < 12; i++) garbage.end.send(Uint8Array.of(0xc1));
+    const lost = watched('lost');
+    lost.hello('lost', 'nowhere');
+    const flooder = watched('flooder');
+    flooder.hello('flooder');
+    await h.settle(() => polite.welcome !== null && flooder.welcome !== null && lost.closed !== null);
+    for (let i = 0; i < 1300; i++) flooder.send({ type: 'ping', clientTimeMs: i });
+    h.ticks(40);
+    expect(byes(silent)[0]?.reason).toBe(ByeReason.Timeout);
+    expect(Object.fromEntries(conduct)).toEqual({
+      polite: ['hello'],
+      silent: ['kicked: timeout'],
+      garbage: ['kicked: too-many-errors'],
+      lost: ['hello'],
+      flooder: ['hello', 'kicked: flood'],
+    });
   });
 
   it('refuses an unknown room with a reason', async () => {
