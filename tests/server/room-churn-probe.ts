@@ -1,7 +1,9 @@
 // Child process of the room-churn test (run with --expose-gc): a real server on loopback opens and closes rooms over
 // and over (every other room with two WebSocket players in it) and prints Node's external memory and RSS, after
 // full GCs, at the baseline (after a warm-up) and after the cycles, as one JSON line on stdout.
-// Run: node --expose-gc tests/server/room-churn-probe.ts [--cycles 50] [--warmup 6] [--scenario character-course]
+// Rooms are closed with Room.close (what DELETE /api/rooms/:id and the empty-room timer call), so the same probe also
+// measures trees without that route. Run: node --expose-gc [--max-semi-space-size=4] tests/server/room-churn-probe.ts
+// [--cycles 50] [--warmup 15] [--scenario character-course]
 import { silentLogger } from '../../server/logger.ts';
 import { createMetrics } from '../../server/metrics.ts';
 import { startServer } from '../../server/start-server.ts';
@@ -13,7 +15,7 @@ function arg(name: string, fallback: string): string {
 }
 
 const cycles = Number(arg('cycles', '50'));
-const warmup = Number(arg('warmup', '6'));
+const warmup = Number(arg('warmup', '15'));
 const scenario = arg('scenario', 'character-course');
 const gc = (globalThis as { gc?: () => void }).gc;
 if (!gc) throw new Error('room-churn-probe: run with node --expose-gc');
