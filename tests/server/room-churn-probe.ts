@@ -1,9 +1,6 @@
-// Child process of the room-churn test (run with --expose-gc): a real server on loopback opens and closes rooms over
-// and over (every other room with two WebSocket players in it) and prints Node's external memory and RSS, after
-// full GCs, at the baseline (after a warm-up) and after the cycles, as one JSON line on stdout.
-// Rooms are closed with Room.close (what DELETE /api/rooms/:id and the empty-room timer call), so the same probe also
-// measures trees without that route. Run: node --expose-gc [--max-semi-space-size=4] tests/server/room-churn-probe.ts
-// [--cycles 50] [--warmup 15] [--scenario character-course]
+// Child process of the room-churn test: a loopback server opens and closes rooms (every other one with two WebSocket
+// players; closed by Room.close, so the probe runs on any tree) and prints external memory and RSS after full GCs.
+// Run: node --expose-gc [--max-semi-space-size=4] tests/server/room-churn-probe.ts [--cycles 50] [--warmup 15]
 import { silentLogger } from '../../server/logger.ts';
 import { createMetrics } from '../../server/metrics.ts';
 import { startServer } from '../../server/start-server.ts';
