@@ -17,14 +17,19 @@ const scenario = arg('scenario', 'character-course');
 const gc = (globalThis as { gc?: () => void }).gc;
 if (!gc) throw new Error('room-churn-probe: run with node --expose-gc');
 
-/** Memory after GC has run to a fixed point (WASM memories are freed when their last reference is collected). */
+/**
+ * Memory after GC has run to a fixed point (WASM memories are freed when their last reference is collected): the
+ * least of five readings, so that a page the allocator has not handed back yet does not count as kept.
+ */
 async function settledMemory(): Promise<{ externalBytes: number; rssBytes: number; arrayBuffersBytes: number; heapUsedBytes: number }> {
-  for (let i = 0; i < 6; i++) {
+  let best: { externalBytes: number; rssBytes: number; arrayBuffersBytes: number; heapUsedBytes: number } | null = null;
+  for (let i = 0; i < 5; i++) {
     gc!();
-    await new Promise((r) => setTimeout(r, 50));
+    await new Promise((r) => setTimeout(r, 100));
+    const m = process.memoryUsage();
+    if (best === null || m.rss < best.rssBytes) best = { externalBytes: m.external, rssBytes: m.rss, arrayBuffersBytes: m.arrayBuffers, heapUsedBytes: m.heapUsed };
   }
-  const m = process.memoryUsage();
-  return { externalBytes: m.external, rssBytes: m.rss, arrayBuffersBytes: m.arrayBuffers, heapUsedBytes: m.heapUsed };
+  return best!;
 }
 
 const server = await startServer({ port: 0, host: '127.0.0.1', scenario, logger: silentLogger(), metrics: createMetrics({ processMetrics: false }), maxRooms: 4 });
