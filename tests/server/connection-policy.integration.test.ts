@@ -33,27 +33,35 @@ function percentile(values: readonly number[], p: number): number {
   return sorted[Math.min(sorted.length - 1, Math.floor((p / 100) * sorted.length))];
 }
 
-/** Every tick of `room` from now on: its duration and the gap since the previous tick started (ms). */
-function timeTicks(room: Room): { durations: number[]; gaps: number[]; reset(): void } {
-  const out = { durations: [] as number[], gaps: [] as number[], reset: () => {} };
+/**
+ * Every tick of `room` from now on: its wall time, the main thread's CPU time in it (the work itself, without the
+ * time the OS gave other processes meanwhile) and the gap since the previous tick started (ms).
+ */
+function timeTicks(room: Room): { durations: number[]; cpu: number[]; gaps: number[]; reset(): void } {
+  const out = { durations: [] as number[], cpu: [] as number[], gaps: [] as number[], reset: () => {} };
   let last: number | null = null;
   out.reset = () => {
     out.durations = [];
+    out.cpu = [];
     out.gaps = [];
     last = null;
   };
   const tickOnce = room.tickOnce.bind(room);
   room.tickOnce = () => {
     const t0 = performance.now();
+    const cpu0 = process.threadCpuUsage();
     if (last !== null) out.gaps.push(t0 - last);
     last = t0;
     tickOnce();
+    const cpu = process.threadCpuUsage(cpu0);
     out.durations.push(performance.now() - t0);
+    out.cpu.push((cpu.user + cpu.system) / 1000);
   };
   return out;
 }
 
 interface PhaseResult {
+  seconds: number;
   joins: number;
   joined: number;
   failures: string[];
@@ -61,6 +69,8 @@ interface PhaseResult {
   tickP50Ms: number;
   tickP99Ms: number;
   tickMaxMs: number;
+  /** p99 of the main thread's CPU time per tick. */
+  tickCpuP99Ms: number;
   /** Longest wait between two tick starts (the clock runs late ticks back to back, so this is how long it stalled). */
   longestGapMs: number;
   joinP99Ms: number;
@@ -103,6 +113,7 @@ async function legitimatePhase(server: RunningServer, ticks: ReturnType<typeof t
   loop.disable();
   const cpu = process.cpuUsage(cpu0);
   return {
+    seconds: (performance.now() - startedAt) / 1000,
     cpuMsPerSecond: (cpu.user + cpu.system) / 1000 / ((performance.now() - startedAt) / 1000),
     eventLoopDelayP99Ms: loop.percentile(99) / 1e6,
     joins,
@@ -112,6 +123,7 @@ async function legitimatePhase(server: RunningServer, ticks: ReturnType<typeof t
     tickP50Ms: percentile(ticks.durations, 50),
     tickP99Ms: percentile(ticks.durations, 99),
     tickMaxMs: Math.max(...ticks.durations),
+    tickCpuP99Ms: percentile(ticks.cpu, 99),
     longestGapMs: Math.max(...ticks.gaps),
     joinP99Ms: percentile(joinMs, 99),
   };
@@ -171,7 +183,7 @@ describe('connection policy under a storm (real server, default limits)', () => 
       const disconnects = await counterValues(metrics.disconnects);
       const refused = await counterValues(metrics.connectionsRefused);
       const show = (r: PhaseResult): string =>
-        `${r.joined}/${r.joins} joins (p99 ${r.joinP99Ms.toFixed(0)} ms), ${r.ticks} ticks: p50 ${r.tickP50Ms.toFixed(2)} ms, p99 ${r.tickP99Ms.toFixed(2)} ms, max ${r.tickMaxMs.toFixed(1)} ms, longest gap ${r.longestGapMs.toFixed(0)} ms; ` +
+        `${r.joined}/${r.joins} joins (p99 ${r.joinP99Ms.toFixed(0)} ms), ${r.ticks} ticks in ${r.seconds.toFixed(1)} s: p50 ${r.tickP50Ms.toFixed(2)} ms, p99 ${r.tickP99Ms.toFixed(2)} ms, max ${r.tickMaxMs.toFixed(1)} ms, CPU p99 ${r.tickCpuP99Ms.toFixed(2)} ms, longest gap ${r.longestGapMs.toFixed(0)} ms; ` +
         `event-loop delay p99 ${r.eventLoopDelayP99Ms.toFixed(1)} ms, CPU ${r.cpuMsPerSecond.toFixed(0)} ms/s`;
       const report = `quiet: ${show(quiet)}\nstorm: ${show(stormy)}\nattacker: ${JSON.stringify(attacker)}\nserver: disconnects ${JSON.stringify(disconnects)}, refused ${JSON.stringify(refused)}, 127.0.0.1 at the end ${JSON.stringify(policyAtPeak)}\nfailures: ${stormy.failures.slice(0, 5).join(' | ')}`;
       console.info(`connection storm (${STORM_SECONDS} s, 300 hostile sockets)\n${report}`);
@@ -183,13 +195,17 @@ describe('connection policy under a storm (real server, default limits)', () => 
       expect(disconnects['too-many-errors'], report).toBeGreaterThan(0);
       expect(disconnects.timeout, report).toBeGreaterThan(0);
       expect(refused.backoff, report).toBeGreaterThan(0);
-      // The legitimate side: almost every join works, the resident player stays, the room's ticks stay within budget
-      // (a machine too loaded to tick a quiet room in budget gets twice its quiet p99 as the bound).
+      // The legitimate side: almost every join works and the resident player stays.
       expect(quiet.joined / quiet.joins, report).toBeGreaterThanOrEqual(0.95);
       expect(stormy.joins, report).toBeGreaterThanOrEqual(20);
       expect(stormy.joined / stormy.joins, report).toBeGreaterThanOrEqual(0.95);
       expect(resident[0].closed, report).toBeNull();
-      expect(stormy.tickP99Ms, report).toBeLessThan(Math.max(TICK_MS, 2 * quiet.tickP99Ms));
+      // The room keeps real time (a server busy with the storm would run it slow), and its ticks stay within one
+      // period: the work of a tick always; its wall time too, unless the machine is so loaded that the quiet phase
+      // missed it already (the storm's own process takes a core): then within four times the quiet p99.
+      expect(stormy.ticks / stormy.seconds, report).toBeGreaterThan(0.85 * Math.min(60, quiet.ticks / quiet.seconds));
+      expect(stormy.tickCpuP99Ms, report).toBeLessThan(TICK_MS);
+      expect(stormy.tickP99Ms, report).toBeLessThan(Math.max(TICK_MS, 4 * quiet.tickP99Ms));
       // Still serving the other address (127.0.0.1 itself is refused for a while: it kept getting kicked).
       expect(await statusFrom(LEGIT, `${server.url}healthz`)).toBe(200);
     } finally {

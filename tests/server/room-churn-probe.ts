@@ -17,19 +17,31 @@ const scenario = arg('scenario', 'character-course');
 const gc = (globalThis as { gc?: () => void }).gc;
 if (!gc) throw new Error('room-churn-probe: run with node --expose-gc');
 
+interface Memory {
+  externalBytes: number;
+  rssBytes: number;
+  arrayBuffersBytes: number;
+  heapUsedBytes: number;
+  heapTotalBytes: number;
+}
+
 /**
- * Memory after GC has run to a fixed point (WASM memories are freed when their last reference is collected): the
- * least of five readings, so that a page the allocator has not handed back yet does not count as kept.
+ * Memory once GC has run to a fixed point. A collected WASM memory leaves external memory only when V8's concurrent
+ * sweeper frees its backing store, which a loaded machine delays: collect until external memory holds still for
+ * three readings (at most ~10 s), and take the least RSS of those, so a page not yet handed back does not count.
  */
-async function settledMemory(): Promise<{ externalBytes: number; rssBytes: number; arrayBuffersBytes: number; heapUsedBytes: number }> {
-  let best: { externalBytes: number; rssBytes: number; arrayBuffersBytes: number; heapUsedBytes: number } | null = null;
-  for (let i = 0; i < 5; i++) {
+async function settledMemory(): Promise<Memory> {
+  const readings: Memory[] = [];
+  for (let i = 0; i < 100; i++) {
     gc!();
     await new Promise((r) => setTimeout(r, 100));
     const m = process.memoryUsage();
-    if (best === null || m.rss < best.rssBytes) best = { externalBytes: m.external, rssBytes: m.rss, arrayBuffersBytes: m.arrayBuffers, heapUsedBytes: m.heapUsed };
+    readings.push({ externalBytes: m.external, rssBytes: m.rss, arrayBuffersBytes: m.arrayBuffers, heapUsedBytes: m.heapUsed, heapTotalBytes: m.heapTotal });
+    const last = readings.slice(-3);
+    if (last.length === 3 && last.every((r) => r.externalBytes === last[0].externalBytes)) break;
   }
-  return best!;
+  const stable = readings.slice(-3);
+  return stable.reduce((best, r) => (r.rssBytes < best.rssBytes ? r : best));
 }
 
 const server = await startServer({ port: 0, host: '127.0.0.1', scenario, logger: silentLogger(), metrics: createMetrics({ processMetrics: false }), maxRooms: 4 });
@@ -49,12 +61,12 @@ async function cycle(i: number): Promise<void> {
 let n = 0;
 for (; n < warmup; n++) await cycle(n);
 const before = await settledMemory();
-const trace: Array<{ cycle: number; externalBytes: number; rssBytes: number; heapUsedBytes: number }> = [];
+const trace: Array<Memory & { cycle: number }> = [];
 for (let k = 0; k < cycles; k++, n++) {
   await cycle(n);
   if ((k + 1) % 5 === 0) {
     const m = await settledMemory();
-    trace.push({ cycle: k + 1, externalBytes: m.externalBytes, rssBytes: m.rssBytes, heapUsedBytes: m.heapUsedBytes });
+    trace.push({ cycle: k + 1, ...m });
   }
 }
 const after = await settledMemory();
