@@ -84,7 +84,8 @@ function quantile(sorted: number[], q: number): number {
   return sorted[Math.min(sorted.length - 1, Math.floor(q * sorted.length))];
 }
 
-const server = await startServer({ port: 0, scenario: 'cubes-901', snapshotRateHz: snapshotHz, logger: silentLogger(), maxClients: 64 });
+// Every client comes from 127.0.0.1: lift the per-address connection caps.
+const server = await startServer({ port: 0, scenario: 'cubes-901', snapshotRateHz: snapshotHz, logger: silentLogger(), maxClients: 64, connectionPolicy: { maxSocketsPerAddress: Infinity, maxPendingPerAddress: Infinity } });
 const room = server.game.rooms.get('default')!;
 const tickMs: number[] = [];
 const stepMs: number[] = [];

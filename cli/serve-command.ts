@@ -1,10 +1,13 @@
 // `serve [--port 8080] [--host 127.0.0.1] [--scenario NAME] [--param k=v] [--snapshot-rate 30] [--record DIR]
-// [--max-clients N] [access flags]`: runs the networked server (HTTP + WebSocket on one port) until SIGINT/SIGTERM.
-// Secrets may come from the environment (TAOS_ADMIN_TOKEN, TAOS_JOIN_SECRET) so they stay out of `ps` output.
+// [--max-clients N] [--tls-cert FILE --tls-key FILE] [--trust-proxy] [access flags] …`: runs the networked server
+// (HTTP(S) + WebSocket on one port) until SIGINT/SIGTERM. Secrets may come from the environment (TAOS_ADMIN_TOKEN,
+// TAOS_JOIN_SECRET) so they stay out of `ps` output.
+import { readFileSync } from 'node:fs';
 import { DEFAULT_SCENARIO } from '../scenarios/index.ts';
 import { ADMIN_TOKEN_ENV, checkAdminTokenText } from '../server/access/admin-auth.ts';
 import { parseAllowedOrigins } from '../server/access/origin-policy.ts';
 import { JOIN_SECRET_ENV, MIN_JOIN_SECRET_LENGTH } from '../server/access/seat-tokens.ts';
+import type { ConnectionPolicyOptions } from '../server/connection-policy.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import { runServe, type ServeOptions } from './serve.ts';
 import type { ParsedArgs } from './args.ts';
@@ -12,6 +15,20 @@ import { UsageError, type CliIo, type CommandSpec } from './command.ts';
 import { checkParams, parseSeed, scenarioNamed } from './scenario-setup.ts';
 
 const LOG_LEVELS = ['trace', 'debug', 'info', 'warn', 'error', 'fatal', 'silent'];
+
+/** The PEM files of --tls-cert and --tls-key (both or neither), read now so a typo is a usage error. */
+function readTls(certPath: string | undefined, keyPath: string | undefined): { cert: Buffer; key: Buffer } | undefined {
+  if (certPath === undefined && keyPath === undefined) return undefined;
+  if (certPath === undefined || keyPath === undefined) throw new UsageError('--tls-cert and --tls-key go together: give both (PEM files) or neither');
+  const read = (flag: string, path: string): Buffer => {
+    try {
+      return readFileSync(path);
+    } catch (error) {
+      throw new UsageError(`cannot read ${flag} ${path}: ${(error as NodeJS.ErrnoException).code ?? (error as Error).message}`);
+    }
+  };
+  return { cert: read('--tls-cert', certPath), key: read('--tls-key', keyPath) };
+}
 
 /** A secret from its flag, else from its environment variable (empty means unset); null when neither is set. */
 function secret(args: ParsedArgs, flag: string, env: string): string | null {
@@ -58,6 +75,9 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
   if (logLevel !== undefined && !LOG_LEVELS.includes(logLevel)) throw new UsageError(`--log-level must be one of ${LOG_LEVELS.join(', ')}, got "${logLevel}"`);
   const host = args.string('host') ?? '127.0.0.1';
   if (host === '') throw new UsageError('--host must not be empty');
+  const connectionPolicy: Partial<ConnectionPolicyOptions> = {};
+  if (args.has('max-connections-per-address')) connectionPolicy.maxSocketsPerAddress = args.number('max-connections-per-address');
+  if (args.has('max-pending-per-address')) connectionPolicy.maxPendingPerAddress = args.number('max-pending-per-address');
   return runServe(
     {
       port: args.number('port', 8080),
@@ -69,6 +89,11 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
       recordDir: record ?? null,
       maxClients: args.number('max-clients', 32),
       maxRooms: args.number('max-rooms'),
+      maxConnections: args.number('max-connections'),
+      connectionPolicy,
+      limits: args.has('hello-timeout-ms') ? { helloTimeoutMs: args.number('hello-timeout-ms') } : undefined,
+      trustProxy: args.flag('trust-proxy'),
+      tls: readTls(args.string('tls-cert'), args.string('tls-key')),
       clientDir: args.string('client-dir'),
       logLevel,
       ...accessOptions(args),
@@ -99,6 +124,13 @@ export const serveCommand: CommandSpec = {
     { name: 'record', kind: 'string', valueName: 'DIR', description: "write every room's input log into DIR" },
     { name: 'max-clients', kind: 'int', valueName: 'N', description: 'most clients per room; default 32', min: 1, max: 1000 },
     { name: 'max-rooms', kind: 'int', valueName: 'N', description: 'most rooms at once (each is a Jolt world in the 128 MB heap); default 6', min: 1, max: 32 },
+    { name: 'max-connections', kind: 'int', valueName: 'N', description: 'most WebSocket connections in all; default 256', min: 1, max: 100_000 },
+    { name: 'max-connections-per-address', kind: 'int', valueName: 'N', description: 'most WebSocket connections from one address (IPv6: one /64); default 32', min: 1, max: 100_000 },
+    { name: 'max-pending-per-address', kind: 'int', valueName: 'N', description: 'most connections from one address that have not said hello yet; default 8', min: 1, max: 100_000 },
+    { name: 'hello-timeout-ms', kind: 'int', valueName: 'MS', description: 'time a new connection has to say hello; default 5000', min: 100, max: 600_000 },
+    { name: 'tls-cert', kind: 'string', valueName: 'FILE', description: 'serve HTTPS and WSS with this PEM certificate (chain); needs --tls-key' },
+    { name: 'tls-key', kind: 'string', valueName: 'FILE', description: "the certificate's PEM private key" },
+    { name: 'trust-proxy', kind: 'boolean', description: 'take client addresses from X-Forwarded-For/-Proto (only behind a reverse proxy)' },
     { name: 'client-dir', kind: 'string', valueName: 'DIR', description: 'built browser client to serve; default dist/client' },
     { name: 'log-level', kind: 'string', valueName: 'LEVEL', description: 'log level (trace, debug, info, warn, error, silent); default info' },
     { name: 'allowed-origins', kind: 'string', valueName: 'LIST', description: 'comma-separated origins whose pages may connect or post (plus self, loopback, *); default self,loopback' },

@@ -54,7 +54,7 @@ export const DEFAULT_SESSION_LIMITS: Readonly<SessionLimits> = Object.freeze({
   inputs: { perSecond: 150, burst: 600 },
   badMessages: { perSecond: 0.5, burst: 10 },
   maxMessageBytes: MAX_CLIENT_MESSAGE_BYTES,
-  helloTimeoutMs: 10_000,
+  helloTimeoutMs: 5_000,
   snapshotSkipBufferedBytes: 256 * 1024,
   maxBufferedBytes: 8 * 1024 * 1024,
 });
@@ -245,6 +245,7 @@ export class ClientSession implements RoomMember, ResumeHolder {
     this.state = 'joining';
     if (this.helloTimer) this.ctx.clock.clearTimer(this.helloTimer);
     this.helloTimer = null;
+    this.conn.helloed?.();
     if (hello.resumeToken !== undefined) {
       const resume = this.ctx.access.resume;
       const claim = resume ? resume.claim(hello.resumeToken, hello.room) : ({ ok: false, reason: 'this server does not resume players' } as const);
@@ -417,6 +418,8 @@ export class ClientSession implements RoomMember, ResumeHolder {
   end(reason: ByeReason, message: string, code: number = CloseCode.Normal): void {
     if (this.state === 'closed') return;
     if (reason !== ByeReason.ClientBye) this.send({ type: 'bye', reason, message });
+    // Misbehaviour (not a slow link or a full room): the transport stops reading the client and remembers its address.
+    if (reason === ByeReason.Flood || reason === ByeReason.TooManyErrors || (reason === ByeReason.Timeout && this.state === 'hello')) this.conn.kicked?.(reason);
     if (reason !== ByeReason.ClientBye && reason !== ByeReason.ServerShutdown && reason !== ByeReason.RoomClosed) {
       this.ctx.metrics.disconnects.inc({ reason });
       this.ctx.logger.info({ session: this.id, remote: this.conn.remote, reason, message }, 'disconnecting client');

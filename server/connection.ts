@@ -38,6 +38,10 @@ export interface ServerConnection {
   close(code: number, reason: string): void;
   /** Installs the owner's callbacks; messages that arrived before are delivered then, in order. */
   attach(handlers: ConnectionHandlers): void;
+  /** The client said a valid hello (a transport's connection policy stops counting it as half-open). */
+  helloed?(): void;
+  /** The server is disconnecting the client for misbehaving: the transport may stop reading it and penalize its address. */
+  kicked?(reason: string): void;
 }
 
 /** Cuts a close reason to the 123 bytes a WebSocket close frame allows, on a character boundary. */

@@ -92,6 +92,17 @@ export class GameServer {
       maxInputLeadTicks: opts.maxInputLeadTicks,
       pauseWhenEmpty: opts.pauseWhenEmpty,
     });
+    this.metrics.setRoomHeapSource(() => this.roomHeaps());
+  }
+
+  /** Each open room's WASM heap (rooms whose simulation does not report one are left out). */
+  roomHeaps(): Array<{ room: string; usedBytes: number; freeBytes: number }> {
+    const out: Array<{ room: string; usedBytes: number; freeBytes: number }> = [];
+    for (const room of this.rooms.all()) {
+      const heap = room.heapUsage();
+      if (heap) out.push({ room: room.id, ...heap });
+    }
+    return out;
   }
 
   /** Builds the server and opens its default room (throws a clear Error for a bad scenario or parameters). */

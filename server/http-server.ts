@@ -1,12 +1,22 @@
 // The HTTP half of the server's single port: /healthz, /metrics, the rooms and seats API and the static client files.
 // Routing and request parsing only; what the answers contain (and who may ask) comes from the HttpApi passed in.
-import { createServer, type IncomingMessage, type Server, type ServerResponse } from 'node:http';
+// Every refusal is answered as `{error: code, message}` (server/http-errors.ts, server/access/refusal.ts).
+import { createServer, type IncomingMessage, type RequestListener, type Server, type ServerResponse } from 'node:http';
+import { createServer as createHttpsServer, type Server as HttpsServer } from 'node:https';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import { sendRefusal, type Refusal } from './access/refusal.ts';
 import { parseSeatRequest, type SeatAnswer, type SeatRequest } from './access/seat-request.ts';
-import type { RoomInfo } from './room.ts';
+import { HttpError, HttpErrorCode, sendError, sendJson } from './http-errors.ts';
+import { RoomError, type RoomInfo } from './room.ts';
 
-/** What the HTTP routes read and do. */
+/** What POST /api/rooms asks for. */
+export interface CreateRoomRequest {
+  scenario: string;
+  params?: Record<string, number>;
+  roomId?: string;
+}
+
+/** What the HTTP routes read and do. Methods refuse by throwing an HttpError (or a RoomError, mapped by its code). */
 export interface HttpApi {
   /** GET /healthz body; `ok: false` answers 503. */
   health(): { ok: boolean } & Record<string, unknown>;
@@ -14,9 +24,11 @@ export interface HttpApi {
   listRooms(): RoomInfo[];
   /** GET /api/scenarios. */
   listScenarios(): unknown[];
-  /** POST /api/rooms {scenario, params?, roomId?}: creates (or returns) a room. Throws an Error with `code` on refusal. */
-  createRoom(req: { scenario: string; params?: Record<string, number>; roomId?: string }): Promise<RoomInfo>;
-  /** POST /api/rooms/ID/seats {ttlSeconds?}: a seat token for that room. Throws an Error with `code` on refusal. */
+  /** POST /api/rooms: opens a room, or returns the open room with that id when it matches (`created: false`). */
+  createRoom(req: CreateRoomRequest): Promise<{ room: RoomInfo; created: boolean }>;
+  /** DELETE /api/rooms/:id: closes the room (its players get a bye saying so); resolves with its last summary. */
+  deleteRoom(id: string): Promise<RoomInfo>;
+  /** POST /api/rooms/ID/seats {ttlSeconds?}: a seat token for that room (an HttpError or RoomError on refusal). */
   reserveSeat(roomId: string, req: SeatRequest): SeatAnswer;
   /** GET /metrics. */
   metrics(): Promise<{ body: string; contentType: string }>;
@@ -26,15 +38,16 @@ export interface HttpApi {
   staticFiles(req: IncomingMessage, res: ServerResponse): Promise<boolean>;
 }
 
-const MAX_BODY_BYTES = 4096;
-
-function sendJson(res: ServerResponse, status: number, value: unknown): void {
-  const body = JSON.stringify(value);
-  res.writeHead(status, { 'content-type': 'application/json; charset=utf-8', 'cache-control': 'no-store', 'content-length': Buffer.byteLength(body) });
-  res.end(body);
-}
+/** Largest request body (POST /api/rooms) in bytes. */
+export const MAX_BODY_BYTES = 4096;
 
 function readBody(req: IncomingMessage): Promise<string> {
+  const tooLarge = (): HttpError => new HttpError(413, HttpErrorCode.BodyTooLarge, `request body over ${MAX_BODY_BYTES} bytes`);
+  const declared = Number(req.headers['content-length']);
+  if (Number.isFinite(declared) && declared > MAX_BODY_BYTES) {
+    req.resume(); // drain without keeping it, so the answer can be read
+    return Promise.reject(tooLarge());
+  }
   return new Promise((resolve, reject) => {
     const chunks: Buffer[] = [];
     let size = 0;
@@ -45,7 +58,7 @@ function readBody(req: IncomingMessage): Promise<string> {
       if (size > MAX_BODY_BYTES) {
         refused = true;
         chunks.length = 0;
-        reject(Object.assign(new Error(`request body over ${MAX_BODY_BYTES} bytes`), { status: 413 }));
+        reject(tooLarge());
         return;
       }
       chunks.push(c);
@@ -55,26 +68,35 @@ function readBody(req: IncomingMessage): Promise<string> {
   });
 }
 
-function parseCreateRoom(text: string): { scenario: string; params?: Record<string, number>; roomId?: string } {
+const CREATE_FIELDS = ['scenario', 'params', 'roomId'] as const;
+const CREATE_SHAPE = '{"scenario": "name", "params"?: {"key": number}, "roomId"?: "id"}';
+
+/** Parses and type-checks a POST /api/rooms body; names the first unknown or mistyped field. */
+export function parseCreateRoom(text: string): CreateRoomRequest {
   let v: unknown;
   try {
     v = JSON.parse(text);
   } catch {
-    throw Object.assign(new Error('body must be JSON: {"scenario": "name", "params"?: {...}, "roomId"?: "id"}'), { status: 400 });
+    throw new HttpError(400, HttpErrorCode.BadJson, `the body must be JSON: ${CREATE_SHAPE}`);
   }
-  if (v === null || typeof v !== 'object' || Array.isArray(v)) throw Object.assign(new Error('body must be a JSON object'), { status: 400 });
+  if (v === null || typeof v !== 'object' || Array.isArray(v)) throw new HttpError(400, HttpErrorCode.BadBody, `the body must be a JSON object: ${CREATE_SHAPE}`);
   const o = v as Record<string, unknown>;
-  if (typeof o.scenario !== 'string' || o.scenario.length === 0 || o.scenario.length > 64) throw Object.assign(new Error('"scenario" must be a scenario name'), { status: 400 });
-  const out: { scenario: string; params?: Record<string, number>; roomId?: string } = { scenario: o.scenario };
+  const unknown = Object.keys(o).filter((k) => !(CREATE_FIELDS as readonly string[]).includes(k));
+  if (unknown.length > 0) {
+    const names = unknown.slice(0, 5).map((k) => JSON.stringify(k.slice(0, 64))).join(', ');
+    throw new HttpError(400, HttpErrorCode.UnknownField, `unknown field${unknown.length > 1 ? 's' : ''} ${names}: POST /api/rooms takes ${CREATE_FIELDS.join(', ')}`);
+  }
+  if (typeof o.scenario !== 'string' || o.scenario.length === 0 || o.scenario.length > 64) throw new HttpError(400, HttpErrorCode.BadBody, '"scenario" must be a scenario name (1-64 characters)');
+  const out: CreateRoomRequest = { scenario: o.scenario };
   if (o.roomId !== undefined) {
-    if (typeof o.roomId !== 'string') throw Object.assign(new Error('"roomId" must be a string'), { status: 400 });
+    if (typeof o.roomId !== 'string') throw new HttpError(400, HttpErrorCode.BadBody, '"roomId" must be a string');
     out.roomId = o.roomId;
   }
   if (o.params !== undefined) {
-    if (o.params === null || typeof o.params !== 'object' || Array.isArray(o.params)) throw Object.assign(new Error('"params" must be an object of numbers'), { status: 400 });
+    if (o.params === null || typeof o.params !== 'object' || Array.isArray(o.params)) throw new HttpError(400, HttpErrorCode.BadBody, '"params" must be an object of numbers');
     const params: Record<string, number> = {};
     for (const [k, val] of Object.entries(o.params as Record<string, unknown>)) {
-      if (typeof val !== 'number' || !Number.isFinite(val)) throw Object.assign(new Error(`param "${k}" must be a finite number`), { status: 400 });
+      if (typeof val !== 'number' || !Number.isFinite(val)) throw new HttpError(400, HttpErrorCode.BadParam, `parameter ${JSON.stringify(k.slice(0, 64))} must be a finite number`);
       params[k] = val;
     }
     out.params = params;
@@ -82,16 +104,41 @@ function parseCreateRoom(text: string): { scenario: string; params?: Record<stri
   return out;
 }
 
-const ERROR_STATUS: Readonly<Record<string, number>> = {
-  [ErrorCode.BadMessage]: 400,
-  [ErrorCode.RoomNotFound]: 404,
-  [ErrorCode.RoomFull]: 409,
-  [ErrorCode.ServerFull]: 503,
-  [ErrorCode.Internal]: 500,
+/** HTTP answers for refusals the room manager words in protocol codes. */
+const ROOM_ERROR_HTTP: Readonly<Record<string, readonly [number, HttpErrorCode]>> = {
+  [ErrorCode.RoomNotFound]: [404, HttpErrorCode.RoomNotFound],
+  [ErrorCode.ServerFull]: [503, HttpErrorCode.ServerFull],
 };
 
+/** The HttpError an exception out of a route answers as, or null for an unexpected failure (a 500). */
+function asHttpError(error: unknown): HttpError | null {
+  if (error instanceof HttpError) return error;
+  if (error instanceof RoomError) {
+    const mapped = ROOM_ERROR_HTTP[error.code];
+    return mapped ? new HttpError(mapped[0], mapped[1], error.message) : null;
+  }
+  return null;
+}
+
+function notAllowed(method: string, path: string, allow: string): HttpError {
+  return new HttpError(405, HttpErrorCode.MethodNotAllowed, `${method} ${path} is not supported (allowed: ${allow})`, { allow });
+}
+
+function decodeSegment(segment: string): string {
+  try {
+    return decodeURIComponent(segment);
+  } catch {
+    throw new HttpError(400, HttpErrorCode.BadUrl, `malformed percent-encoding in ${JSON.stringify(segment.slice(0, 80))}`);
+  }
+}
+
 async function route(api: HttpApi, req: IncomingMessage, res: ServerResponse): Promise<void> {
-  const url = new URL(req.url ?? '/', 'http://localhost');
+  let url: URL;
+  try {
+    url = new URL(req.url ?? '/', 'http://localhost');
+  } catch {
+    throw new HttpError(400, HttpErrorCode.BadUrl, 'the request target is not a valid URL');
+  }
   const path = url.pathname;
   const method = req.method ?? 'GET';
   const refusal = api.authorize?.(req, method, path) ?? null;
@@ -99,74 +146,82 @@ async function route(api: HttpApi, req: IncomingMessage, res: ServerResponse): P
     sendRefusal(res, refusal);
     return;
   }
-  if (path === '/healthz' && (method === 'GET' || method === 'HEAD')) {
+  const isGet = method === 'GET' || method === 'HEAD';
+  if (path === '/healthz') {
+    if (!isGet) throw notAllowed(method, path, 'GET, HEAD');
     const h = api.health();
     sendJson(res, h.ok ? 200 : 503, h);
     return;
   }
-  if (path === '/metrics' && method === 'GET') {
+  if (path === '/metrics') {
+    if (method !== 'GET') throw notAllowed(method, path, 'GET');
     const { body, contentType } = await api.metrics();
     res.writeHead(200, { 'content-type': contentType, 'cache-control': 'no-store' });
     res.end(body);
     return;
   }
-  if (path === '/api/scenarios' && method === 'GET') {
+  if (path === '/api/scenarios') {
+    if (!isGet) throw notAllowed(method, path, 'GET, HEAD');
     sendJson(res, 200, { scenarios: api.listScenarios() });
     return;
   }
-  if (path === '/api/rooms' && method === 'GET') {
-    sendJson(res, 200, { rooms: api.listRooms() });
-    return;
-  }
-  if (path === '/api/rooms' && method === 'POST') {
-    try {
-      const room = await api.createRoom(parseCreateRoom(await readBody(req)));
-      sendJson(res, 201, { room });
-    } catch (error) {
-      const e = error as Error & { status?: number; code?: string };
-      const status = e.status ?? (e.code !== undefined ? (ERROR_STATUS[e.code] ?? 500) : 500);
-      sendJson(res, status, { error: e.message, code: e.code ?? 'bad-request' });
-    }
+  if (path === '/api/rooms') {
+    if (isGet) sendJson(res, 200, { rooms: api.listRooms() });
+    else if (method === 'POST') {
+      const { room, created } = await api.createRoom(parseCreateRoom(await readBody(req)));
+      sendJson(res, created ? 201 : 200, { room });
+    } else throw notAllowed(method, path, 'GET, HEAD, POST');
     return;
   }
   const seatMatch = /^\/api\/rooms\/([^/]+)\/seats$/.exec(path);
-  if (seatMatch && method === 'POST') {
+  if (seatMatch) {
+    if (method !== 'POST') throw notAllowed(method, path, 'POST');
+    const id = decodeSegment(seatMatch[1]);
+    let request: SeatRequest;
     try {
-      const seat = api.reserveSeat(decodeURIComponent(seatMatch[1]), parseSeatRequest(await readBody(req)));
-      sendJson(res, 201, { seat });
+      request = parseSeatRequest(await readBody(req));
     } catch (error) {
-      if (error instanceof URIError) {
-        sendJson(res, 400, { error: 'bad-request', message: 'the room id in the path is not valid percent-encoding' });
-        return;
-      }
-      const e = error as Error & { status?: number; code?: string };
-      const status = e.status ?? (e.code !== undefined ? (ERROR_STATUS[e.code] ?? 500) : 500);
-      sendJson(res, status, { error: e.code ?? (status === 413 ? 'body-too-large' : 'bad-request'), message: e.message });
+      if (error instanceof HttpError) throw error;
+      throw new HttpError(400, HttpErrorCode.BadBody, error instanceof Error ? error.message : 'the body is not a seat request');
     }
+    sendJson(res, 201, { seat: api.reserveSeat(id, request) });
     return;
   }
   const roomMatch = /^\/api\/rooms\/([^/]+)$/.exec(path);
-  if (roomMatch && method === 'GET') {
-    const room = api.listRooms().find((r) => r.id === decodeURIComponent(roomMatch[1]));
-    if (room) sendJson(res, 200, { room });
-    else sendJson(res, 404, { error: `no room "${decodeURIComponent(roomMatch[1])}"`, code: 'room-not-found' });
+  if (roomMatch) {
+    const id = decodeSegment(roomMatch[1]);
+    if (isGet) {
+      const room = api.listRooms().find((r) => r.id === id);
+      if (!room) throw new HttpError(404, HttpErrorCode.RoomNotFound, `no room ${JSON.stringify(id.slice(0, 64))}`);
+      sendJson(res, 200, { room });
+    } else if (method === 'DELETE') {
+      sendJson(res, 200, { room: await api.deleteRoom(id) });
+    } else throw notAllowed(method, path, 'GET, HEAD, DELETE');
     return;
   }
-  if (path.startsWith('/api/') || path === '/healthz' || path === '/metrics') {
-    sendJson(res, 405, { error: `${method} ${path} is not supported`, code: 'method-not-allowed' });
-    return;
-  }
+  if (path.startsWith('/api/')) throw new HttpError(404, HttpErrorCode.NotFound, `no API route ${path.slice(0, 100)} (see /api/rooms, /api/scenarios)`);
   if (await api.staticFiles(req, res)) return;
-  res.writeHead(405, { 'content-type': 'text/plain; charset=utf-8', allow: 'GET, HEAD' }).end(`${method} not allowed\n`);
+  throw notAllowed(method, path, 'GET, HEAD');
 }
 
-/** An HTTP server answering the routes above; never throws out of a request (failures answer 500). */
-export function createHttpServer(api: HttpApi, onError?: (error: unknown) => void): Server {
-  return createServer((req, res) => {
+/** The request handler of the routes above; never throws (refusals answer their status, failures 500). */
+export function createRequestHandler(api: HttpApi, onError?: (error: unknown) => void): RequestListener {
+  return (req, res) => {
     route(api, req, res).catch((error: unknown) => {
-      onError?.(error);
-      if (!res.headersSent) sendJson(res, 500, { error: 'internal error', code: 'internal' });
-      else res.destroy();
+      const refusal = asHttpError(error);
+      if (refusal === null) onError?.(error);
+      if (res.headersSent) {
+        res.destroy();
+        return;
+      }
+      if (refusal) sendError(res, refusal.status, refusal.code, refusal.message, refusal.headers);
+      else sendError(res, 500, HttpErrorCode.Internal, 'internal error');
     });
-  });
+  };
+}
+
+/** An HTTP server answering the routes above; HTTPS with `tls` (PEM certificate chain and key). */
+export function createHttpServer(api: HttpApi, onError?: (error: unknown) => void, tls?: { cert: string | Buffer; key: string | Buffer }): Server | HttpsServer {
+  const handler = createRequestHandler(api, onError);
+  return tls ? createHttpsServer({ cert: tls.cert, key: tls.key }, handler) : createServer(handler);
 }

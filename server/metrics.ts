@@ -50,6 +50,19 @@ export interface ServerMetrics {
   readonly messageErrors: Counter<string>;
   /** Exceptions and rejections that reached the process's last-resort handler (kind label: exception, rejection). */
   readonly uncaughtErrors: Counter<string>;
+  /** WebSocket upgrades refused before a session started (reason label: per-address caps, back-off, full). */
+  readonly connectionsRefused: Counter<string>;
+  /** Each open room's Jolt heap in bytes (labels room, kind = used | free), read at scrape time. */
+  readonly wasmHeap: Gauge<string>;
+  /** Sets where wasmHeap reads the open rooms from (the server does it once its rooms exist). */
+  setRoomHeapSource(source: () => Iterable<RoomHeapUsage>): void;
+}
+
+/** One room's heap for the wasmHeap gauge. */
+export interface RoomHeapUsage {
+  room: string;
+  usedBytes: number;
+  freeBytes: number;
 }
 
 /** Creates a fresh registry with all metrics (plus Node process metrics when `processMetrics`). */
@@ -61,8 +74,27 @@ export function createMetrics(opts: { processMetrics?: boolean; prefix?: string 
   const counter = (name: string, help: string, labelNames: string[] = []): Counter<string> =>
     new Counter({ name: p + name, help, labelNames, registers });
   const gauge = (name: string, help: string): Gauge<string> => new Gauge({ name: p + name, help, registers });
+  let heapSource: () => Iterable<RoomHeapUsage> = () => [];
+  const wasmHeap = new Gauge({
+    name: `${p}room_wasm_heap_bytes`,
+    help: "Each open room's Jolt WASM heap (its own 128 MiB module): used and free bytes",
+    labelNames: ['room', 'kind'],
+    registers,
+    collect() {
+      // Closed rooms disappear from the exposition: at most --max-rooms rooms are ever labelled at once.
+      this.reset();
+      for (const r of heapSource()) {
+        this.set({ room: r.room, kind: 'used' }, r.usedBytes);
+        this.set({ room: r.room, kind: 'free' }, r.freeBytes);
+      }
+    },
+  });
   return {
     registry,
+    wasmHeap,
+    setRoomHeapSource: (source) => {
+      heapSource = source;
+    },
     tickDuration: new Histogram({ name: `${p}tick_duration_seconds`, help: 'Wall time of one room tick (inputs, physics, snapshots, sends)', buckets: TICK_BUCKETS_SECONDS, registers }),
     physicsStep: new Histogram({ name: `${p}physics_step_seconds`, help: 'Wall time of Simulation.step in one room tick', buckets: TICK_BUCKETS_SECONDS, registers }),
     ticks: counter('ticks_total', 'Room ticks simulated'),
@@ -89,6 +121,7 @@ export function createMetrics(opts: { processMetrics?: boolean; prefix?: string 
     resumes: counter('resumes_total', 'Players taken back by a new connection with their resume token'),
     messageErrors: counter('message_errors_total', "Exceptions while handling a client's message (the client was disconnected)"),
     uncaughtErrors: counter('uncaught_errors_total', "Exceptions and promise rejections caught by the serving process's last-resort handler", ['kind']),
+    connectionsRefused: counter('connections_refused_total', 'WebSocket upgrades refused before a session started', ['reason']),
   };
 }
 

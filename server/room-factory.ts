@@ -34,8 +34,12 @@ export interface RoomFactoryOptions {
   isolateRooms?: boolean;
 }
 
-/** A RoomFactory over Simulation.create with a heap guard and optional recording. */
+/**
+ * A RoomFactory over Simulation.create with a heap guard and optional recording. It keeps no reference to an isolated
+ * room's simulation: once the room closes and drops it, its Jolt module and 128 MB heap are garbage.
+ */
 export function createRoomFactory(opts: RoomFactoryOptions): RoomFactory & { liveSimulations(): number } {
+  // Shared-module mode only: the worlds on the process-wide heap, for the free-memory guard (destroyed ones pruned).
   const live = new Set<Simulation>();
   const need = opts.minFreeHeapBytesForRoom ?? 32 * 1024 * 1024;
 
@@ -49,6 +53,7 @@ export function createRoomFactory(opts: RoomFactoryOptions): RoomFactory & { liv
   };
 
   return {
+    /** Worlds open on the shared module (always 0 with isolated rooms, which this factory does not track). */
     liveSimulations: () => {
       prune();
       return live.size;
@@ -63,7 +68,7 @@ export function createRoomFactory(opts: RoomFactoryOptions): RoomFactory & { liv
         throw new Error(`not enough physics memory for another room: ${(free / 1048576).toFixed(1)} MiB free of the 128 MiB WASM heap, a room needs ${(need / 1048576).toFixed(0)} MiB; close a room first`);
       }
       const sim = await Simulation.create({ scenario: def, params, seed, worldOptions: { isolatedModule: isolated } });
-      live.add(sim);
+      if (!isolated) live.add(sim);
       return { sim, maxBodies: sim.world.maxBodies, params: { ...sim.params }, description: def.description, bounds: def.bounds };
     },
     async createRecorder(room): Promise<RoomRecorder | null> {

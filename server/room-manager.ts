@@ -11,6 +11,11 @@ export const DEFAULT_ROOM_ID = 'default';
 /** Room ids: letters, digits, '-' and '_' (1–64). */
 const ROOM_ID_RE = /^[A-Za-z0-9_-]{1,64}$/;
 
+/** Whether `id` is a well-formed room id. */
+export function isRoomId(id: string): boolean {
+  return ROOM_ID_RE.test(id);
+}
+
 /** A simulation built for a room, with the limit the room enforces on joins. */
 export interface RoomSimulationBuild {
   sim: RoomSimulation;

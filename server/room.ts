@@ -31,6 +31,8 @@ export interface RoomSimulation {
   staticDescriptors(): BodyDescriptor[];
   bodyDescriptor(id: number): BodyDescriptor | undefined | null;
   destroy(): void;
+  /** The world's WASM heap (for /metrics), when the simulation has one. */
+  readonly world?: { freeHeapBytes(): number; totalHeapBytes(): number };
 }
 
 /** Where a room's input records go (the --record writer). A recorder never throws into the room. */
@@ -226,6 +228,14 @@ export class Room {
   start(): void {
     if (this.closed) return;
     if (this.players.size > 0 || !(this.opts.pauseWhenEmpty ?? true)) this.tickClock.start();
+  }
+
+  /** The room's WASM heap (used and free bytes), or null when closed or the simulation does not say. */
+  heapUsage(): { usedBytes: number; freeBytes: number } | null {
+    const world = this.closed ? undefined : this.sim.world;
+    if (!world) return null;
+    const freeBytes = world.freeHeapBytes();
+    return { usedBytes: world.totalHeapBytes() - freeBytes, freeBytes };
   }
 
   /** The room's summary. */
@@ -451,5 +461,10 @@ export class Room {
     this.sim.destroy();
     this.opts.logger.info({ room: this.id, reason, tick }, 'room closed');
     for (const fn of this.closeListeners) fn(reason);
+    // Nothing outlives the room through its listeners (they close over sessions, managers, recorders).
+    this.tickListeners.clear();
+    this.emptyListeners.clear();
+    this.closeListeners.clear();
+    this.pendingLeaves = [];
   }
 }

@@ -2,21 +2,24 @@
 // rooms run the registered scenarios; close(reason) shuts it all down in order (byes, rooms, recordings, sockets, logs).
 import './physics-node.ts';
 import type { AddressInfo } from 'node:net';
+import { createSecureContext } from 'node:tls';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { DEFAULT_SCENARIO, listScenarios } from '../scenarios/index.ts';
 import type { Clock } from '../shared/clock.ts';
-import { ErrorCode, MAX_CLIENT_MESSAGE_BYTES } from '../shared/protocol/index.ts';
+import { MAX_CLIENT_MESSAGE_BYTES } from '../shared/protocol/index.ts';
 import { resolveParams } from '../shared/sim/scenario.ts';
 import { createServerAccess, logAccess, type AccessOptions } from './access/access-setup.ts';
 import { SystemClock } from './clock.ts';
 import type { SessionLimits } from './client-session.ts';
 import { GameServer } from './game-server.ts';
+import { createHttpApi } from './http-api.ts';
 import { createHttpServer } from './http-server.ts';
+import { ConnectionPolicy, type ConnectionPolicyOptions } from './connection-policy.ts';
+import { createTcpGate, Tarpit, type TarpitOptions } from './tcp-gate.ts';
 import { createLogger, flushLogger, type Logger } from './logger.ts';
-import { createMetrics, renderMetrics, type ServerMetrics } from './metrics.ts';
+import { createMetrics, type ServerMetrics } from './metrics.ts';
 import { createRoomFactory, type ScenarioSource } from './room-factory.ts';
-import { RoomError } from './room.ts';
 import { createStaticHandler } from './static-files.ts';
 import { attachWsGateway } from './ws-gateway.ts';
 
@@ -57,6 +60,16 @@ export interface StartServerOptions extends AccessOptions {
   heartbeatMs?: number;
   /** How long a player whose link dropped is held for a reconnect (ms). Default 30 000; 0: off. */
   resumeGraceMs?: number;
+  /** Per-address connection limits and back-off (defaults: DEFAULT_CONNECTION_POLICY; maxSockets: maxConnections). */
+  connectionPolicy?: Partial<ConnectionPolicyOptions>;
+  /** How long a socket the server closed may take to finish the close handshake before it is cut. Default 1000 ms. */
+  closeGraceMs?: number;
+  /** Take the client's address and scheme from X-Forwarded-For/-Proto (only behind a reverse proxy). Default false. */
+  trustProxy?: boolean;
+  /** How refused connections of one address are held before their answer (see server/tcp-gate.ts). */
+  tarpit?: TarpitOptions;
+  /** Serve HTTPS and WSS with this certificate chain and private key (PEM). Default: plain HTTP and WS. */
+  tls?: { cert: string | Buffer; key: string | Buffer };
 }
 
 /** A listening server. */
@@ -69,6 +82,8 @@ export interface RunningServer {
   readonly host: string;
   readonly game: GameServer;
   readonly logger: Logger;
+  /** Who may open a WebSocket (per-address counts, back-off). */
+  readonly policy: ConnectionPolicy;
   /** Shuts down: clients get a bye with `reason`, rooms stop, recordings end, sockets close, logs flush. Idempotent. */
   close(reason?: string): Promise<void>;
 }
@@ -79,6 +94,15 @@ export function registryScenarios(): ScenarioSource {
     get: (name) => listScenarios().find((s) => s.name === name),
     names: () => listScenarios().map((s) => s.name),
   };
+}
+
+/** Throws a clear Error unless `tls` is a PEM certificate chain with its matching private key. */
+function checkTls(tls: { cert: string | Buffer; key: string | Buffer }): void {
+  try {
+    createSecureContext({ cert: tls.cert, key: tls.key });
+  } catch (error) {
+    throw new Error(`cannot use the TLS certificate and key: ${error instanceof Error ? error.message : String(error)} (both must be PEM; the key must belong to the certificate)`, { cause: error });
+  }
 }
 
 /** Starts listening; throws a clear Error for a bad scenario/parameter or a port that cannot be bound. */
@@ -95,6 +119,9 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   const host = opts.host ?? '127.0.0.1';
   if (!Number.isInteger(port) || port < 0 || port > 65535) throw new Error(`port must be an integer in [0, 65535], got ${port}`);
   const access = createServerAccess(opts, metrics, logger);
+  if (opts.tls) checkTls(opts.tls);
+  const policy = new ConnectionPolicy(clock, { maxSockets: opts.maxConnections ?? 256, ...opts.connectionPolicy });
+  const tarpit = new Tarpit(clock, opts.tarpit);
 
   const game = await GameServer.create({
     factory: createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null, hashEveryTicks: opts.recordHashEveryTicks }),
@@ -117,32 +144,20 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
 
   const staticFiles = createStaticHandler(opts.clientDir ?? DEFAULT_CLIENT_DIR);
   const http = createHttpServer(
-    {
-      health: () => game.health(),
-      listRooms: () => game.listRooms(),
-      listScenarios: () => scenarios.names().map((n) => {
-        const s = scenarios.get(n)!;
-        return { name: s.name, description: s.description, params: s.params };
-      }),
-      createRoom: async (req) => {
-        const room = req.roomId !== undefined ? await game.rooms.resolve({ roomId: req.roomId, scenario: req.scenario, params: req.params }) : await game.rooms.resolve({ scenario: req.scenario, params: req.params });
-        return room.info();
-      },
-      reserveSeat: (roomId, req) => {
-        if (!game.rooms.get(roomId)) throw new RoomError(ErrorCode.RoomNotFound, `no room "${roomId}" is open`);
-        const seat = access.seats.issue(roomId, req.ttlSeconds === undefined ? undefined : req.ttlSeconds * 1000);
-        return { token: seat.token, roomId: seat.roomId, seatId: seat.seatId, expiresAt: new Date(seat.expiresAtMs).toISOString() };
-      },
-      metrics: () => renderMetrics(metrics),
-      staticFiles,
-      authorize: access.authorize,
-    },
+    createHttpApi({ game, scenarios, metrics, logger, access, staticFiles }),
     (error) => logger.error({ err: error }, 'HTTP request failed'),
+    opts.tls,
   );
   const gateway = attachWsGateway(http, {
     clock,
     maxPayloadBytes: opts.limits?.maxMessageBytes ?? MAX_CLIENT_MESSAGE_BYTES,
     heartbeatMs: opts.heartbeatMs,
+    closeGraceMs: opts.closeGraceMs,
+    policy,
+    tarpit,
+    trustProxy: opts.trustProxy,
+    metrics,
+    logger,
     refuse: () => game.refusal(),
     checkUpgrade: access.checkUpgrade,
     onConnection: (conn) => {
@@ -150,11 +165,16 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     },
   });
 
+  // The gate listens and hands admitted connections to the HTTP(S) server (which never listens itself).
+  const gate = createTcpGate(http, { policy, tarpit, trustProxy: opts.trustProxy ?? false, metrics });
   try {
     await new Promise<void>((resolveListen, rejectListen) => {
-      http.once('error', rejectListen);
-      http.listen(port, host, () => {
-        http.off('error', rejectListen);
+      gate.once('error', rejectListen);
+      gate.listen(port, host, () => {
+        gate.off('error', rejectListen);
+        // Node's HTTP server tracks its connections (headers/request timeouts, closeAllConnections) from its
+        // 'listening' event; it is listening through the gate.
+        http.emit('listening');
         resolveListen();
       });
     });
@@ -164,13 +184,14 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     const e = error as NodeJS.ErrnoException;
     throw new Error(e.code === 'EADDRINUSE' ? `port ${port} on ${host} is already in use (pick another with --port)` : `cannot listen on ${host}:${port}: ${e.message}`, { cause: error });
   }
-  const address = http.address() as AddressInfo;
+  const address = gate.address() as AddressInfo;
   // Bound to every interface: show the loopback address, which a browser on this machine can open.
   const reachable = host === '0.0.0.0' ? '127.0.0.1' : host === '::' ? '::1' : host;
   const shownHost = reachable.includes(':') ? `[${reachable}]` : reachable;
-  const url = `http://${shownHost}:${address.port}/`;
-  const wsUrl = `ws://${shownHost}:${address.port}/`;
-  logger.info({ url, scenario: scenarioName, snapshotRateHz: game.snapshotRateHz, recordDir: opts.recordDir ?? null }, 'server listening');
+  const secure = opts.tls !== undefined;
+  const url = `${secure ? 'https' : 'http'}://${shownHost}:${address.port}/`;
+  const wsUrl = `${secure ? 'wss' : 'ws'}://${shownHost}:${address.port}/`;
+  logger.info({ url, scenario: scenarioName, snapshotRateHz: game.snapshotRateHz, recordDir: opts.recordDir ?? null, trustProxy: opts.trustProxy ?? false }, 'server listening');
   logAccess(logger, host, access);
 
   let closing: Promise<void> | null = null;
@@ -181,12 +202,15 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     host,
     game,
     logger,
+    policy,
     close(reason = 'server shutting down') {
       closing ??= (async () => {
         await game.close(reason);
         await gateway.close(1000);
+        const stopped = new Promise<void>((done) => gate.close(() => done()));
+        http.close(() => undefined); // stops its connection checks (it never listened itself, so it reports that)
         http.closeAllConnections();
-        await new Promise<void>((done) => http.close(() => done()));
+        await stopped;
         logger.info({ reason }, 'server stopped');
         await flushLogger(logger);
       })();

@@ -4,6 +4,7 @@ import { createReadStream, type Stats } from 'node:fs';
 import { stat } from 'node:fs/promises';
 import type { IncomingMessage, ServerResponse } from 'node:http';
 import { extname, resolve, sep } from 'node:path';
+import { HttpErrorCode, sendError } from './http-errors.ts';
 
 const CONTENT_TYPES: Readonly<Record<string, string>> = {
   '.html': 'text/html; charset=utf-8',
@@ -50,17 +51,17 @@ export function createStaticHandler(rootDir: string): (req: IncomingMessage, res
     try {
       pathname = decodeURIComponent(new URL(req.url ?? '/', 'http://localhost').pathname);
     } catch {
-      res.writeHead(400, { 'content-type': 'text/plain; charset=utf-8' }).end('bad request path\n');
+      sendError(res, 400, HttpErrorCode.BadUrl, 'the request path is not a valid URL path (malformed percent-encoding?)');
       return true;
     }
     if (pathname.includes('\0')) {
-      res.writeHead(400, { 'content-type': 'text/plain; charset=utf-8' }).end('bad request path\n');
+      sendError(res, 400, HttpErrorCode.BadUrl, 'the request path contains a NUL character');
       return true;
     }
     const relative = pathname.endsWith('/') ? `${pathname}index.html` : pathname;
     const full = resolve(root, `.${relative}`);
     if (full !== root && !full.startsWith(root + sep)) {
-      res.writeHead(403, { 'content-type': 'text/plain; charset=utf-8' }).end('forbidden\n');
+      sendError(res, 403, HttpErrorCode.Forbidden, 'the path leaves the client directory');
       return true;
     }
     let info = await fileStats(full);
@@ -75,7 +76,7 @@ export function createStaticHandler(rootDir: string): (req: IncomingMessage, res
         res.end(req.method === 'HEAD' ? undefined : notBuiltPage(root));
         return true;
       }
-      res.writeHead(404, { 'content-type': 'text/plain; charset=utf-8' }).end(`not found: ${pathname}\n`);
+      sendError(res, 404, HttpErrorCode.NotFound, `no file ${JSON.stringify(pathname.slice(0, 200))}`);
       return true;
     }
     res.writeHead(200, {

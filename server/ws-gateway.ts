@@ -1,11 +1,18 @@
-// WebSocket side of the shared HTTP port: upgrades requests with `ws` (maxPayload enforced, no compression), wraps
-// each socket as a ServerConnection, and keeps links alive with ws pings (dead peers are terminated).
+// WebSocket side of the shared HTTP(S) port: admits upgrades through the connection policy (per-address caps, back-off
+// after kicks), upgrades with `ws` (maxPayload enforced, no compression), wraps each socket as a ServerConnection,
+// keeps links alive with pings, and makes sure a socket the server closes is gone shortly after (never read for long).
 import type { IncomingMessage, Server as HttpServer } from 'node:http';
+import type { Server as HttpsServer } from 'node:https';
 import type { Duplex } from 'node:stream';
 import { WebSocketServer, type RawData, type WebSocket } from 'ws';
 import type { Clock, TimerHandle } from '../shared/clock.ts';
-import { refuseUpgrade, type Refusal } from './access/refusal.ts';
+import { refuseUpgrade, type Refusal as AccessRefusal } from './access/refusal.ts';
+import { addressKey, clientAddress, describeAddress } from './client-address.ts';
 import { clampCloseReason, CloseCode, type ConnectionHandlers, type ServerConnection } from './connection.ts';
+import { ConnectionPolicy, RefusalReason, type ConnectionTicket, type Refusal } from './connection-policy.ts';
+import type { Logger } from './logger.ts';
+import type { ServerMetrics } from './metrics.ts';
+import { refusalResponse, Tarpit } from './tcp-gate.ts';
 
 /** Options of attachWsGateway. */
 export interface WsGatewayOptions {
@@ -14,20 +21,33 @@ export interface WsGatewayOptions {
   maxPayloadBytes: number;
   /** Milliseconds between keep-alive pings; a socket that missed one pong is terminated. Default 15000. */
   heartbeatMs?: number;
+  /** How long a socket the server closed may take to finish the close handshake before it is destroyed. Default 1000. */
+  closeGraceMs?: number;
+  /** Who may connect (default: a policy with the default limits on `clock`). */
+  policy?: ConnectionPolicy;
+  /** Where refused sockets of one address wait for their answer (default: a tarpit with the default limits). */
+  tarpit?: Tarpit;
+  /** Read the client's address from X-Forwarded-For (only behind a reverse proxy). Default false. */
+  trustProxy?: boolean;
+  /** Refusals and keep-alive disconnects are counted here when given. */
+  metrics?: ServerMetrics;
+  logger?: Logger;
   /** Called for each accepted socket. */
   onConnection(conn: ServerConnection, req: IncomingMessage): void;
   /** Returns a reason to refuse new sockets (shutting down, full), or null to accept. */
   refuse?(): string | null;
   /** Access rules for this upgrade request (the Origin check): a refusal is answered instead of upgrading. */
-  checkUpgrade?(req: IncomingMessage): Refusal | null;
+  checkUpgrade?(req: IncomingMessage): AccessRefusal | null;
 }
 
 /** The running gateway. */
 export interface WsGateway {
   /** Stops accepting sockets and terminates any that are still open after `graceMs`. */
   close(graceMs?: number): Promise<void>;
-  /** Sockets currently open. */
+  /** Sockets currently open (past the upgrade). */
   openSockets(): number;
+  /** The policy admitting sockets. */
+  readonly policy: ConnectionPolicy;
 }
 
 function toBytes(data: RawData): Uint8Array {
@@ -40,17 +60,25 @@ function toBytes(data: RawData): Uint8Array {
 class WsConnection implements ServerConnection {
   readonly remote: string;
   private readonly socket: WebSocket;
+  private readonly ticket: ConnectionTicket;
+  private readonly clock: Clock;
+  private readonly closeGraceMs: number;
   private handlers: ConnectionHandlers | null = null;
   private early: Array<[Uint8Array, boolean]> = [];
   private closedNotified = false;
   private earlyClose: [number, string] | null = null;
   private errorClose: [number, string] | null = null;
+  private killTimer: TimerHandle | null = null;
   alive = true;
 
-  constructor(socket: WebSocket, remote: string) {
+  constructor(socket: WebSocket, remote: string, ticket: ConnectionTicket, clock: Clock, closeGraceMs: number) {
     this.socket = socket;
     this.remote = remote;
+    this.ticket = ticket;
+    this.clock = clock;
+    this.closeGraceMs = closeGraceMs;
     socket.on('message', (data, isBinary) => {
+      if (socket.readyState !== socket.OPEN) return; // closing: nothing the peer says matters any more
       const bytes = toBytes(data);
       if (this.handlers) this.handlers.message(bytes, isBinary);
       else this.early.push([bytes, isBinary]);
@@ -59,11 +87,16 @@ class WsConnection implements ServerConnection {
       this.alive = true;
     });
     // ws reports protocol violations (oversize frame, bad framing) as 'error' and closes the socket itself; the
-    // close event then carries the peer's echo (or 1006), so remember why ws closed it.
+    // close event then carries the peer's echo (or 1006), so remember why ws closed it. Both are a client's fault.
     socket.on('error', (err: Error & { code?: string }) => {
-      this.errorClose ??= err.code === 'WS_ERR_UNSUPPORTED_MESSAGE_LENGTH' ? [CloseCode.MessageTooBig, 'message too big'] : [CloseCode.ProtocolError, err.message];
+      if (this.errorClose) return;
+      this.errorClose = err.code === 'WS_ERR_UNSUPPORTED_MESSAGE_LENGTH' ? [CloseCode.MessageTooBig, 'message too big'] : [CloseCode.ProtocolError, err.message];
+      ticket.kicked();
+      this.destroyLater();
     });
     socket.on('close', (code, reason) => {
+      if (this.killTimer) this.clock.clearTimer(this.killTimer);
+      this.killTimer = null;
       if (this.errorClose) this.notifyClose(this.errorClose[0], this.errorClose[1]);
       else this.notifyClose(code, reason.toString('utf8'));
     });
@@ -77,6 +110,15 @@ class WsConnection implements ServerConnection {
     }
     this.closedNotified = true;
     this.handlers.close(code, reason);
+  }
+
+  /** The close handshake gets closeGraceMs; then the socket is cut (ws alone would wait 30 s, reading all along). */
+  private destroyLater(): void {
+    if (this.killTimer) return;
+    this.killTimer = this.clock.setTimer(this.closeGraceMs, () => {
+      this.killTimer = null;
+      this.socket.terminate();
+    });
   }
 
   send(data: Uint8Array): void {
@@ -95,6 +137,18 @@ class WsConnection implements ServerConnection {
   close(code: number, reason: string): void {
     if (this.socket.readyState === this.socket.CLOSED || this.socket.readyState === this.socket.CLOSING) return;
     this.socket.close(code, clampCloseReason(reason));
+    this.destroyLater();
+  }
+
+  helloed(): void {
+    this.ticket.helloed();
+  }
+
+  kicked(): void {
+    this.ticket.kicked();
+    // Not another byte from a client being kicked: its bye and close frame go out, then it is cut after the grace.
+    this.socket.pause();
+    this.destroyLater();
   }
 
   terminate(): void {
@@ -115,28 +169,48 @@ class WsConnection implements ServerConnection {
 }
 
 /** Handles WebSocket upgrades on `http` and hands every accepted socket to `onConnection`. */
-export function attachWsGateway(http: HttpServer, opts: WsGatewayOptions): WsGateway {
+export function attachWsGateway(http: HttpServer | HttpsServer, opts: WsGatewayOptions): WsGateway {
   const wss = new WebSocketServer({ noServer: true, maxPayload: opts.maxPayloadBytes, perMessageDeflate: false, clientTracking: false });
+  const policy = opts.policy ?? new ConnectionPolicy(opts.clock);
+  const tarpit = opts.tarpit ?? new Tarpit(opts.clock);
   const open = new Set<WsConnection>();
   const heartbeatMs = opts.heartbeatMs ?? 15_000;
+  const closeGraceMs = opts.closeGraceMs ?? 1000;
+  const trustProxy = opts.trustProxy ?? false;
   let closing = false;
   let heartbeat: TimerHandle | null = null;
 
+  // Refusals for the whole server are answered at once; those for one address wait in the tarpit (bounded), so an
+  // address that reconnects the moment it is refused cannot make us parse upgrades as fast as it can send them.
+  const refuse = (socket: Duplex, key: string, refusal: Refusal | { reason: 'shutting-down' | 'server-full'; message: string; retryAfterMs: number | null }): void => {
+    opts.metrics?.connectionsRefused.inc({ reason: refusal.reason });
+    if (refusal.reason === RefusalReason.ServerFull || refusal.reason === 'shutting-down') {
+      socket.end(refusalResponse(503, refusal.reason, refusal.message, refusal.retryAfterMs), () => socket.destroy());
+      return;
+    }
+    tarpit.refuse(socket, key, refusal.retryAfterMs ?? 0, refusalResponse(429, 'rate-limited', refusal.message, refusal.retryAfterMs));
+  };
+
   const onUpgrade = (req: IncomingMessage, socket: Duplex, head: Buffer): void => {
     socket.on('error', () => socket.destroy());
+    // Access control first: a page from a refused origin gets its 403 before it costs a slot.
     const denied = opts.checkUpgrade?.(req) ?? null;
     if (denied !== null) {
       refuseUpgrade(socket, denied);
       return;
     }
-    const refusal = closing ? 'server shutting down' : (opts.refuse?.() ?? null);
-    if (refusal !== null) {
-      socket.end(`HTTP/1.1 503 Service Unavailable\r\nContent-Type: text/plain\r\nConnection: close\r\n\r\n${refusal}\n`);
-      return;
-    }
+    const client = clientAddress(req, trustProxy);
+    const key = addressKey(client.address);
+    if (closing) return refuse(socket, key, { reason: 'shutting-down', message: 'server shutting down', retryAfterMs: null });
+    const server = opts.refuse?.() ?? null;
+    if (server !== null) return refuse(socket, key, { reason: 'server-full', message: server, retryAfterMs: 5_000 });
+    const refusal = policy.admit(key);
+    if (refusal !== null) return refuse(socket, key, refusal);
+    // Counted from here until the TCP socket is gone, whatever happens to the handshake or the session.
+    const ticket = policy.open(key);
+    socket.once('close', () => ticket.closed());
     wss.handleUpgrade(req, socket, head, (ws) => {
-      const remote = `${req.socket.remoteAddress ?? '?'}:${req.socket.remotePort ?? '?'}`;
-      const conn = new WsConnection(ws, remote);
+      const conn = new WsConnection(ws, describeAddress(client), ticket, opts.clock, closeGraceMs);
       open.add(conn);
       ws.on('close', () => open.delete(conn));
       opts.onConnection(conn, req);
@@ -147,6 +221,8 @@ export function attachWsGateway(http: HttpServer, opts: WsGatewayOptions): WsGat
   const beat = (): void => {
     for (const conn of open) {
       if (!conn.alive) {
+        opts.metrics?.disconnects.inc({ reason: 'keepalive-timeout' });
+        opts.logger?.info({ remote: conn.remote }, 'disconnecting client: no pong to the last keep-alive ping');
         conn.terminate();
         continue;
       }
@@ -157,14 +233,17 @@ export function attachWsGateway(http: HttpServer, opts: WsGatewayOptions): WsGat
         conn.terminate();
       }
     }
+    policy.sweep();
     heartbeat = opts.clock.setTimer(heartbeatMs, beat);
   };
   heartbeat = opts.clock.setTimer(heartbeatMs, beat);
 
   return {
+    policy,
     openSockets: () => open.size,
     close: async (graceMs = 1000) => {
       closing = true;
+      tarpit.close();
       http.off('upgrade', onUpgrade);
       if (heartbeat) opts.clock.clearTimer(heartbeat);
       heartbeat = null;

@@ -1,5 +1,5 @@
 // The server process of the clients-per-core and rooms-per-core figures: startServer (HTTP + ws on loopback, the
-// scene's default room) with the connection and room caps lifted, every room's ticks timed (wall and this thread's
+// scene's default room) with the connection caps (total and per address) and room caps lifted, every room's ticks timed (wall and this thread's
 // CPU), GC pauses observed, the process's own CPU time counted. Prints {"wsUrl"} when listening. Stdin commands:
 // "rooms N" opens rooms r1…rN of the same scene (prints {"rooms"}); "mark" starts a measurement window; "report"
 // prints the window as one JSON line. Run: node bench/procs/bench-server.ts SCENARIO PARAMS_JSON SNAPSHOT_HZ MAX_CLIENTS
@@ -33,6 +33,8 @@ const server = await startServer({
   maxConnections: maxClients + 16,
   maxRooms: MAX_ROOMS + 1,
   emptyRoomGraceMs: 3_600_000, // rooms of the ladder stay open between steps
+  // Every bot comes from 127.0.0.1: lift the per-address connection caps.
+  connectionPolicy: { maxSocketsPerAddress: Infinity, maxPendingPerAddress: Infinity },
   logger: silentLogger(),
   metrics,
 });

@@ -313,6 +313,11 @@ export class PhysicsWorld {
     return this.jolt.JoltInterface.prototype.sGetFreeMemory();
   }
 
+  /** Size of the world's WASM heap in bytes (fixed: 128 MiB); shared with other worlds on the same module. */
+  totalHeapBytes(): number {
+    return this.jolt.JoltInterface.prototype.sGetTotalMemory();
+  }
+
   private createBody(shape: JoltShape, spec: ShapeSpec, pos: Vec3Like, rot: QuatLike, motion: MotionKind, layer: number, mask: number, opts: BodyOptions, what: string, at?: { id: number; joltId: number }): BodyHandle {
     const J = this.jolt;
     const isSensor = opts.isSensor === true || opts.sensor !== undefined;

@@ -4,7 +4,9 @@ import { pino } from 'pino';
 import { afterEach, describe, expect, it } from 'vitest';
 import { ByeReason, ClientOpcode, ErrorCode, packValue, PROTOCOL_VERSION } from '../../shared/protocol/index.ts';
 import { Button, NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input.ts';
-import { startHarness, type Harness, type TestClient } from './harness.ts';
+import { memoryPeerConnection } from '../../server/memory-peer.ts';
+import { MemoryNetwork } from '../../sdk/index.ts';
+import { startHarness, TestClient, type Harness } from './harness.ts';
 import { stripScenario } from './test-scenarios.ts';
 
 let h: Harness | null = null;
@@ -151,6 +153,39 @@ describe('ClientSession', () => {
     expect(errorCodes(v1)).toEqual([ErrorCode.VersionMismatch]);
     expect(byes(v1)[0]).toMatchObject({ reason: ByeReason.VersionMismatch, message: expect.stringContaining(`speaks protocol ${PROTOCOL_VERSION} and the client sent protocol 1`) });
     expect(v1.closed?.code).toBe(1008);
+  });
+
+  it('tells its connection about the hello and about kicks for misbehaviour, not about other endings', async () => {
+    h = await startHarness({ scenarios: [stripScenario], limits: { helloTimeoutMs: 500 } });
+    const conduct = new Map<string, string[]>();
+    // Client ends whose server side records what the session reports to its transport (the ws gateway's policy).
+    const watched = (name: string): TestClient => {
+      const net = new MemoryNetwork(h!.clock);
+      const seen: string[] = [];
+      conduct.set(name, seen);
+      net.listen('mem://watched', (peer) => h!.server.accept(Object.assign(memoryPeerConnection(peer), { helloed: () => seen.push('hello'), kicked: (reason: string) => seen.push(`kicked: ${reason}`) })));
+      return new TestClient(net, 'mem://watched', name);
+    };
+    const polite = watched('polite');
+    polite.hello('polite');
+    const silent = watched('silent');
+    const garbage = watched('garbage');
+    for (let i = 0; i < 12; i++) garbage.end.send(Uint8Array.of(0xc1));
+    const lost = watched('lost');
+    lost.hello('lost', 'nowhere');
+    const flooder = watched('flooder');
+    flooder.hello('flooder');
+    await h.settle(() => polite.welcome !== null && flooder.welcome !== null && lost.closed !== null);
+    for (let i = 0; i < 1300; i++) flooder.send({ type: 'ping', clientTimeMs: i });
+    h.ticks(40);
+    expect(byes(silent)[0]?.reason).toBe(ByeReason.Timeout);
+    expect(Object.fromEntries(conduct)).toEqual({
+      polite: ['hello'],
+      silent: ['kicked: timeout'],
+      garbage: ['kicked: too-many-errors'],
+      lost: ['hello'],
+      flooder: ['hello', 'kicked: flood'],
+    });
   });
 
   it('refuses an unknown room with a reason', async () => {

@@ -165,4 +165,17 @@ describe('GameServer (in-process)', () => {
     expect(sameTick && framesEqual(sameTick, firstFrame)).toBe(true);
     expect(late.welcome?.dynamicBodies.length).toBeGreaterThanOrEqual(6);
   });
+
+  it('reports each open room\'s own 128 MiB WASM heap, and no longer a room that closed', async () => {
+    h = await startHarness({ scenarios: [stripScenario] });
+    await h.join('ann', 'test-strip');
+    const heaps = h.server.roomHeaps();
+    expect(heaps.map((r) => r.room)).toEqual(['default', 'test-strip']);
+    for (const r of heaps) {
+      expect(r.usedBytes).toBeGreaterThan(1024 * 1024);
+      expect(r.usedBytes + r.freeBytes).toBe(128 * 1024 * 1024);
+    }
+    await h.room('test-strip').close('test over');
+    expect(h.server.roomHeaps().map((r) => r.room)).toEqual(['default']);
+  });
 });

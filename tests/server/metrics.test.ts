@@ -28,6 +28,23 @@ describe('metrics', () => {
     a.ticks.inc(5);
     expect((await renderMetrics(a)).body).toContain('taos_ticks_total 5');
     expect((await renderMetrics(a)).body).toContain('taos_process_cpu_user_seconds_total');
+    expect((await renderMetrics(a)).body).toMatch(/^taos_nodejs_external_memory_bytes \d+/m);
     expect((await renderMetrics(b)).body).toContain('taos_ticks_total 0');
+  });
+
+  it('labels each room\'s WASM heap with the room id and drops a room once its source no longer lists it', async () => {
+    const m = createMetrics({ processMetrics: false });
+    let rooms = [
+      { room: 'default', usedBytes: 10_000_000, freeBytes: 124_217_728 },
+      { room: 'arena', usedBytes: 20_000_000, freeBytes: 114_217_728 },
+    ];
+    m.setRoomHeapSource(() => rooms);
+    let body = (await renderMetrics(m)).body;
+    expect(body).toContain('taos_room_wasm_heap_bytes{room="default",kind="used"} 10000000');
+    expect(body).toContain('taos_room_wasm_heap_bytes{room="arena",kind="free"} 114217728');
+    rooms = rooms.slice(0, 1);
+    body = (await renderMetrics(m)).body;
+    expect(body).toContain('taos_room_wasm_heap_bytes{room="default",kind="free"} 124217728');
+    expect(body).not.toContain('room="arena"');
   });
 });

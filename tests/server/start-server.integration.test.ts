@@ -49,12 +49,15 @@ describe('startServer (real sockets)', () => {
     expect((await fetch(`${server.url}api/rooms/${room.id}`)).status).toBe(200);
     const bad = await fetch(`${server.url}api/rooms`, { method: 'POST', body: JSON.stringify({ scenario: 'nope' }) });
     expect(bad.status).toBe(400);
-    expect(((await bad.json()) as { error: string }).error).toMatch(/unknown scenario "nope"/);
+    expect(await bad.json()).toEqual({ error: 'unknown-scenario', message: expect.stringMatching(/^unknown scenario "nope"/) });
+    const gone = await fetch(`${server.url}api/rooms/${room.id}`, { method: 'DELETE' });
+    expect(gone.status).toBe(200);
+    expect((await fetch(`${server.url}api/rooms/${room.id}`)).status).toBe(404);
     const page = await fetch(server.url);
     expect(page.status).toBe(503);
     expect(await page.text()).toMatch(/has not been built/);
     const metrics = await (await fetch(`${server.url}metrics`)).text();
-    for (const name of ['taos_tick_duration_seconds_bucket', 'taos_physics_step_seconds', 'taos_rooms 2', 'taos_clients 0', 'taos_inputs_late_total', 'taos_inputs_dropped_total', 'taos_snapshot_bytes', 'taos_bytes_sent_total', 'taos_snapshots_skipped_total', 'taos_tick_overruns_total']) {
+    for (const name of ['taos_tick_duration_seconds_bucket', 'taos_physics_step_seconds', 'taos_rooms 1', 'taos_clients 0', 'taos_inputs_late_total', 'taos_inputs_dropped_total', 'taos_snapshot_bytes', 'taos_bytes_sent_total', 'taos_snapshots_skipped_total', 'taos_tick_overruns_total', 'taos_room_wasm_heap_bytes{room="default",kind="used"}']) {
       expect(metrics).toContain(name);
     }
   });

@@ -72,12 +72,18 @@ describe('static-files', () => {
     const res = await request(handler, 'GET', `/..%2Ftaos-secret.txt`);
     expect(res?.status).toBe(403);
     expect(res?.body).not.toContain('secret\n');
+    expect(JSON.parse(res!.body)).toEqual({ error: 'forbidden', message: 'the path leaves the client directory' });
     expect((await request(handler, 'GET', '/a%00b'))?.status).toBe(400);
+    const malformed = await request(handler, 'GET', '/%E0%A4%A');
+    expect(malformed?.status).toBe(400);
+    expect(JSON.parse(malformed!.body)).toMatchObject({ error: 'bad-url' });
   });
 
   it('returns 404 for missing files and leaves other methods to the next handler', async () => {
     const handler = createStaticHandler(dir);
-    expect((await request(handler, 'GET', '/nope.js'))?.status).toBe(404);
+    const missing = await request(handler, 'GET', '/nope.js');
+    expect(missing?.status).toBe(404);
+    expect(JSON.parse(missing!.body)).toEqual({ error: 'not-found', message: 'no file "/nope.js"' });
     expect(await request(handler, 'POST', '/')).toBeNull();
   });
 

@@ -13,6 +13,14 @@ import {
   type WelcomeMessage,
 } from '../../shared/protocol/index.ts';
 
+/** How a test client opens its socket. */
+export interface WsConnectOptions {
+  /** Local address to bind (any of 127.0.0.0/8 is this machine on Linux). */
+  localAddress?: string;
+  /** Certificate authorities to trust for wss:// (PEM). */
+  ca?: string | Buffer;
+}
+
 /** A connected test client. */
 export class WsTestClient {
   readonly ws: WebSocket;
@@ -42,9 +50,9 @@ export class WsTestClient {
     ws.on('error', () => {});
   }
 
-  /** Opens a socket to `url`. */
-  static async connect(url: string): Promise<WsTestClient> {
-    const ws = new WebSocket(url);
+  /** Opens a socket to `url` (from `localAddress` when given, e.g. another loopback address). */
+  static async connect(url: string, opts: WsConnectOptions = {}): Promise<WsTestClient> {
+    const ws = new WebSocket(url, { localAddress: opts.localAddress, ca: opts.ca });
     const c = new WsTestClient(ws);
     await new Promise<void>((resolve, reject) => {
       ws.once('open', () => resolve());
@@ -54,10 +62,16 @@ export class WsTestClient {
   }
 
   /** Connects and joins; resolves with the welcomed client. */
-  static async join(url: string, name: string, room: string | null = null): Promise<WsTestClient> {
-    const c = await WsTestClient.connect(url);
+  static async join(url: string, name: string, room: string | null = null, opts: WsConnectOptions & { timeoutMs?: number } = {}): Promise<WsTestClient> {
+    const c = await WsTestClient.connect(url, opts);
     c.send({ type: 'hello', version: PROTOCOL_VERSION, name, room });
-    await c.waitFor(() => c.welcome !== null, 5000, 'welcome');
+    try {
+      await c.waitFor(() => c.welcome !== null || c.closed !== null, opts.timeoutMs ?? 5000, 'welcome');
+    } catch (error) {
+      c.ws.terminate();
+      throw error;
+    }
+    if (!c.welcome) throw new Error(`no welcome for ${name}: closed ${JSON.stringify(c.closed)} after ${JSON.stringify(c.messages.slice(-2))}`);
     return c;
   }
 

@@ -1,12 +1,16 @@
-// Integration tests for server/ws-gateway.ts on loopback: upgrades on the HTTP port, refusals before the upgrade,
-// messages that arrive before the owner attaches, oversize frames reported as 1009, and dead peers terminated.
+// Integration tests for server/ws-gateway.ts on loopback: upgrades on the HTTP port, refusals before the upgrade
+// (full, per-address caps), messages that arrive before the owner attaches, oversize frames reported as 1009, dead
+// peers terminated and counted, and a kicked socket cut shortly after its close frame.
 import { createServer, type Server } from 'node:http';
 import type { AddressInfo } from 'node:net';
 import { afterEach, describe, expect, it } from 'vitest';
 import WebSocket from 'ws';
 import { SystemClock } from '../../server/clock.ts';
 import type { ServerConnection } from '../../server/connection.ts';
+import { ConnectionPolicy } from '../../server/connection-policy.ts';
+import { createMetrics, type ServerMetrics } from '../../server/metrics.ts';
 import { attachWsGateway, type WsGateway } from '../../server/ws-gateway.ts';
+import { maskedFrame, openRawWs } from './raw-ws.ts';
 
 let http: Server | null = null;
 let gateway: WsGateway | null = null;
@@ -17,7 +21,16 @@ afterEach(async () => {
   gateway = null;
 });
 
-async function listen(opts: { refuse?: () => string | null; heartbeatMs?: number; onConnection: (c: ServerConnection) => void }): Promise<string> {
+interface ListenOptions {
+  refuse?: () => string | null;
+  heartbeatMs?: number;
+  closeGraceMs?: number;
+  policy?: ConnectionPolicy;
+  metrics?: ServerMetrics;
+  onConnection: (c: ServerConnection) => void;
+}
+
+async function listen(opts: ListenOptions): Promise<string> {
   http = createServer((_, res) => res.writeHead(404).end());
   gateway = attachWsGateway(http, { clock: new SystemClock(), maxPayloadBytes: 1024, ...opts });
   await new Promise<void>((done) => http!.listen(0, '127.0.0.1', () => done()));
@@ -77,9 +90,10 @@ describe('ws-gateway', () => {
     expect(closes).toEqual([1009]);
   });
 
-  it('terminates a peer that stops answering pings', async () => {
+  it('terminates a peer that stops answering pings and counts it as a keep-alive disconnect', async () => {
     const closes: number[] = [];
-    const url = await listen({ heartbeatMs: 60, onConnection: (c) => c.attach({ message: () => {}, close: (code) => closes.push(code) }) });
+    const metrics = createMetrics({ processMetrics: false });
+    const url = await listen({ heartbeatMs: 60, metrics, onConnection: (c) => c.attach({ message: () => {}, close: (code) => closes.push(code) }) });
     const alive = new WebSocket(url);
     const dead = new WebSocket(url, { autoPong: false });
     await Promise.all([new Promise((r) => alive.once('open', r)), new Promise((r) => dead.once('open', r))]);
@@ -87,6 +101,62 @@ describe('ws-gateway', () => {
     expect(closes[0]).toBe(1006);
     expect(dead.readyState).not.toBe(WebSocket.OPEN);
     expect(alive.readyState).toBe(WebSocket.OPEN);
+    expect((await metrics.disconnects.get()).values).toEqual([{ labels: { reason: 'keepalive-timeout' }, value: 1 }]);
     alive.close();
+  });
+
+  it('refuses a socket over the per-address half-open cap with 429, Retry-After and the reason, and not other addresses', async () => {
+    const metrics = createMetrics({ processMetrics: false });
+    const policy = new ConnectionPolicy(new SystemClock(), { maxPendingPerAddress: 1 });
+    const url = await listen({ policy, metrics, onConnection: (c) => c.attach({ message: () => {}, close: () => {} }) });
+    const first = await openRawWs(url, { localAddress: '127.0.0.1' });
+    expect(first.status).toBe(101);
+    const second = await openRawWs(url, { localAddress: '127.0.0.1' });
+    expect(second.status).toBe(429);
+    expect(second.head).toMatch(/\r\nRetry-After: 1\r\n/);
+    await waitFor(() => second.closed);
+    const other = await openRawWs(url, { localAddress: '127.0.0.2' });
+    expect(other.status).toBe(101);
+    expect(policy.countsOf('127.0.0.1')).toEqual({ sockets: 1, pending: 1, kicks: 0 });
+    expect((await metrics.connectionsRefused.get()).values).toEqual([{ labels: { reason: 'address-pending' }, value: 1 }]);
+    first.socket.destroy();
+    other.socket.destroy();
+    await waitFor(() => policy.openSockets === 0);
+  });
+
+  it('stops reading a kicked socket and cuts it after the close grace, counting it until it is gone', async () => {
+    const policy = new ConnectionPolicy(new SystemClock());
+    let messages = 0;
+    const url = await listen({
+      policy,
+      closeGraceMs: 300,
+      onConnection: (c) =>
+        c.attach({
+          message: () => {
+            messages++;
+            c.kicked?.('flood');
+            c.close(1008, 'flood: go away');
+          },
+          close: () => {},
+        }),
+    });
+    // A hostile peer: keeps writing after the close frame and never answers it.
+    const raw = await openRawWs(url);
+    const frame = maskedFrame(new Uint8Array(1000));
+    const started = performance.now();
+    const flood = setInterval(() => {
+      if (!raw.socket.destroyed) raw.socket.write(Buffer.concat(Array.from({ length: 64 }, () => frame)));
+    }, 5);
+    try {
+      await waitFor(() => raw.closed, 5000);
+    } finally {
+      clearInterval(flood);
+    }
+    const aliveMs = performance.now() - started;
+    expect(messages).toBe(1);
+    expect(aliveMs).toBeGreaterThanOrEqual(250);
+    expect(aliveMs).toBeLessThan(3000);
+    expect(policy.countsOf('127.0.0.1').kicks).toBe(1);
+    await waitFor(() => policy.openSockets === 0);
   });
 });

@@ -1,0 +1,100 @@
+// The server's HttpApi: what the rooms and seats API, health, scenarios and metrics routes answer, over a GameServer. Refusals
+// are HttpErrors with a code that says what went wrong (unknown scenario, bad parameter, room exists, …).
+import type { IncomingMessage, ServerResponse } from 'node:http';
+import { ErrorCode } from '../shared/protocol/opcodes.ts';
+import type { ServerAccess } from './access/access-setup.ts';
+import { resolveParams } from '../shared/sim/scenario.ts';
+import type { GameServer } from './game-server.ts';
+import { HttpError, HttpErrorCode } from './http-errors.ts';
+import type { CreateRoomRequest, HttpApi } from './http-server.ts';
+import type { Logger } from './logger.ts';
+import { renderMetrics, type ServerMetrics } from './metrics.ts';
+import { RoomError, type Room, type RoomInfo } from './room.ts';
+import type { ScenarioSource } from './room-factory.ts';
+import { DEFAULT_ROOM_ID, isRoomId } from './room-manager.ts';
+
+/** What createHttpApi serves. */
+export interface HttpApiOptions {
+  game: GameServer;
+  scenarios: ScenarioSource;
+  metrics: ServerMetrics;
+  logger: Logger;
+  /** Access control: the guard every request passes first, and the seat tokens the seats route issues. */
+  access: ServerAccess;
+  staticFiles(req: IncomingMessage, res: ServerResponse): Promise<boolean>;
+}
+
+const quote = (s: string): string => JSON.stringify(s.length > 64 ? `${s.slice(0, 64)}…` : s);
+
+/** A room the manager could not open, as an HTTP answer (unexpected failures are logged). */
+function creationRefused(error: unknown, logger: Logger): HttpError {
+  if (error instanceof HttpError) return error;
+  if (error instanceof RoomError && error.code === ErrorCode.ServerFull) return new HttpError(503, HttpErrorCode.ServerFull, error.message);
+  const message = error instanceof Error ? error.message : String(error);
+  logger.error({ err: error }, 'opening a room over HTTP failed');
+  return new HttpError(500, HttpErrorCode.Internal, message);
+}
+
+/** The HttpApi of a running GameServer. */
+export function createHttpApi(opts: HttpApiOptions): HttpApi {
+  const { game, scenarios } = opts;
+
+  // A room asked for by id that is already open: the same room when scenario and given parameters match, else 409.
+  const matchExisting = (room: Room, req: CreateRoomRequest, params: Readonly<Record<string, number>>): RoomInfo => {
+    if (room.scenarioName !== req.scenario) {
+      throw new HttpError(409, HttpErrorCode.RoomExists, `room ${quote(room.id)} is open with scenario ${quote(room.scenarioName)}, not ${quote(req.scenario)}`);
+    }
+    for (const key of Object.keys(req.params ?? {})) {
+      if (room.params[key] !== params[key]) throw new HttpError(409, HttpErrorCode.RoomExists, `room ${quote(room.id)} is open with ${key}=${room.params[key]}, not ${params[key]}`);
+    }
+    return room.info();
+  };
+
+  return {
+    health: () => game.health(),
+    listRooms: () => game.listRooms(),
+    listScenarios: () =>
+      scenarios.names().map((n) => {
+        const s = scenarios.get(n)!;
+        return { name: s.name, description: s.description, params: s.params };
+      }),
+    async createRoom(req) {
+      if (game.isClosing) throw new HttpError(503, HttpErrorCode.ShuttingDown, 'the server is shutting down');
+      const def = scenarios.get(req.scenario);
+      if (!def) throw new HttpError(400, HttpErrorCode.UnknownScenario, `unknown scenario ${quote(req.scenario)} (known: ${scenarios.names().join(', ')})`);
+      let params: Readonly<Record<string, number>>;
+      try {
+        params = resolveParams(def, req.params ?? {});
+      } catch (error) {
+        throw new HttpError(400, HttpErrorCode.BadParam, error instanceof Error ? error.message : String(error));
+      }
+      if (req.roomId === undefined) {
+        const room = await game.rooms.resolve({ scenario: req.scenario, params: req.params }).catch((e: unknown) => Promise.reject(creationRefused(e, opts.logger)));
+        return { room: room.info(), created: true };
+      }
+      if (!isRoomId(req.roomId)) throw new HttpError(400, HttpErrorCode.BadRoomId, `room id must be 1-64 characters of A-Z a-z 0-9 _ -, got ${quote(req.roomId)}`);
+      const existing = game.rooms.get(req.roomId);
+      if (existing) return { room: matchExisting(existing, req, params), created: false };
+      const room = await game.rooms.create(req.roomId, req.scenario, req.params ?? {}).catch((e: unknown) => Promise.reject(creationRefused(e, opts.logger)));
+      // Another request may have been opening the same id at the same moment: it must agree too.
+      return { room: matchExisting(room, req, params), created: true };
+    },
+    async deleteRoom(id) {
+      if (id === DEFAULT_ROOM_ID) throw new HttpError(409, HttpErrorCode.DefaultRoom, 'the default room stays open while the server runs');
+      const room = game.rooms.get(id);
+      if (!room) throw new HttpError(404, HttpErrorCode.RoomNotFound, `no room ${quote(id)}`);
+      const info = room.info();
+      await room.close(`room ${id} was closed through the server's HTTP API`);
+      opts.logger.info({ room: id, clients: info.clients }, 'room closed over HTTP');
+      return info;
+    },
+    reserveSeat(roomId, req) {
+      if (!game.rooms.get(roomId)) throw new HttpError(404, HttpErrorCode.RoomNotFound, `no room ${quote(roomId)} is open`);
+      const seat = opts.access.seats.issue(roomId, req.ttlSeconds === undefined ? undefined : req.ttlSeconds * 1000);
+      return { token: seat.token, roomId: seat.roomId, seatId: seat.seatId, expiresAt: new Date(seat.expiresAtMs).toISOString() };
+    },
+    metrics: () => renderMetrics(opts.metrics),
+    authorize: opts.access.authorize,
+    staticFiles: (req, res) => opts.staticFiles(req, res),
+  };
+}

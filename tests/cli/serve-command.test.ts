@@ -1,0 +1,23 @@
+// Tests for the serve command's connection and TLS flags: mistakes are usage errors (exit 2) found before anything
+// starts.
+import { describe, expect, it } from 'vitest';
+import { cli } from '../helpers/cli.ts';
+
+describe('serve command', () => {
+  it('wants --tls-cert and --tls-key together, and readable', async () => {
+    const alone = await cli('serve', '--tls-cert', 'cert.pem');
+    expect(alone.code).toBe(2);
+    expect(alone.stderr).toMatch(/--tls-cert and --tls-key go together/);
+    const missing = await cli('serve', '--tls-cert', '/nonexistent/cert.pem', '--tls-key', '/nonexistent/key.pem');
+    expect(missing.code).toBe(2);
+    expect(missing.stderr).toMatch(/cannot read --tls-cert \/nonexistent\/cert\.pem: ENOENT/);
+  });
+
+  it('checks the connection limits', async () => {
+    const r = await cli('serve', '--max-connections-per-address', '0');
+    expect(r.code).toBe(2);
+    expect(r.stderr).toMatch(/--max-connections-per-address must be ≥ 1, got 0/);
+    expect((await cli('serve', '--hello-timeout-ms', '5s')).stderr).toMatch(/--hello-timeout-ms must be an integer/);
+    expect((await cli('serve', '--trust-proxy=yes')).stderr).toMatch(/--trust-proxy takes no value/);
+  });
+});
