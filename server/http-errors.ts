@@ -1,5 +1,6 @@
 // The one shape of every HTTP error answer, `{error: code, message}`: the codes, an Error that carries a status and a
-// code through the route handlers, and the helpers that write JSON answers. Every route answers refusals through here.
+// code through the route handlers, and the helpers that write it — to an HTTP response, or as raw HTTP bytes to a
+// socket refused before HTTP handling (a WebSocket upgrade, the listening gate). Every refusal is written here.
 import type { ServerResponse } from 'node:http';
 
 /** Machine-readable codes of HTTP error answers (the WebSocket protocol has its own, in shared/protocol). */
@@ -58,7 +59,21 @@ export function sendJson(res: ServerResponse, status: number, value: unknown, he
   res.end(body);
 }
 
-/** Writes the error answer `{error: code, message}`. */
-export function sendError(res: ServerResponse, status: number, code: HttpErrorCode, message: string, headers: Readonly<Record<string, string>> = {}): void {
+/** Writes the error answer `{error: code, message}` (codes: HttpErrorCode, or access control's AccessCode). */
+export function sendError(res: ServerResponse, status: number, code: string, message: string, headers: Readonly<Record<string, string>> = {}): void {
   sendJson(res, status, { error: code, message }, headers);
+}
+
+const STATUS_TEXT: Readonly<Record<number, string>> = { 401: 'Unauthorized', 403: 'Forbidden', 429: 'Too Many Requests', 503: 'Service Unavailable' };
+
+/** The error answer `{error: code, message}` as a whole HTTP/1.1 response that closes the connection. */
+export function rawErrorResponse(status: number, code: string, message: string, headers: Readonly<Record<string, string>> = {}): string {
+  const body = JSON.stringify({ error: code, message });
+  const extra = Object.entries(headers)
+    .map(([k, v]) => `${k}: ${v}\r\n`)
+    .join('');
+  return (
+    `HTTP/1.1 ${status} ${STATUS_TEXT[status] ?? 'Error'}\r\nContent-Type: application/json; charset=utf-8\r\nContent-Length: ${Buffer.byteLength(body)}\r\n` +
+    `Cache-Control: no-store\r\n${extra}Connection: close\r\n\r\n${body}`
+  );
 }

@@ -8,6 +8,7 @@ import type { Duplex } from 'node:stream';
 import { addressKey, normalizeAddress } from './client-address.ts';
 import type { Clock } from '../shared/clock.ts';
 import type { ConnectionPolicy } from './connection-policy.ts';
+import { rawErrorResponse } from './http-errors.ts';
 import type { ServerMetrics } from './metrics.ts';
 
 /** Limits of the tarpit. */
@@ -88,10 +89,7 @@ export class Tarpit {
 
 /** A refusal as a raw HTTP/1.1 response in the API's `{error, message}` shape. */
 export function refusalResponse(status: 429 | 503, code: string, message: string, retryAfterMs: number | null): string {
-  const body = JSON.stringify({ error: code, message });
-  const statusText = status === 429 ? 'Too Many Requests' : 'Service Unavailable';
-  const retry = retryAfterMs === null ? '' : `Retry-After: ${Math.max(1, Math.ceil(retryAfterMs / 1000))}\r\n`;
-  return `HTTP/1.1 ${status} ${statusText}\r\nContent-Type: application/json; charset=utf-8\r\nContent-Length: ${Buffer.byteLength(body)}\r\n${retry}Connection: close\r\n\r\n${body}`;
+  return rawErrorResponse(status, code, message, retryAfterMs === null ? {} : { 'Retry-After': String(Math.max(1, Math.ceil(retryAfterMs / 1000))) });
 }
 
 /** Options of createTcpGate. */

@@ -1,7 +1,8 @@
-// The one shape an access refusal takes (HTTP status, stable code, sentence, extra headers) and how it is written:
-// as a JSON answer `{error: code, message}` to an HTTP request, or as a raw HTTP answer to a refused WebSocket upgrade.
+// What an access refusal is (HTTP status, stable code, sentence, extra headers) and how it is written, through the
+// server's one error shape (server/http-errors.ts): to an HTTP request, or as raw HTTP to a refused WebSocket upgrade.
 import type { ServerResponse } from 'node:http';
 import type { Duplex } from 'node:stream';
+import { rawErrorResponse, sendError } from '../http-errors.ts';
 
 /** Codes of access refusals (the `error` field of the JSON body). */
 export const AccessCode = {
@@ -25,25 +26,12 @@ export interface Refusal {
   headers?: Readonly<Record<string, string>>;
 }
 
-const STATUS_TEXT: Readonly<Record<Refusal['status'], string>> = { 401: 'Unauthorized', 403: 'Forbidden' };
-
-function body(r: Refusal): string {
-  return JSON.stringify({ error: r.code, message: r.message });
-}
-
 /** Answers an HTTP request with the refusal. */
 export function sendRefusal(res: ServerResponse, r: Refusal): void {
-  const text = body(r);
-  res.writeHead(r.status, { ...r.headers, 'content-type': 'application/json; charset=utf-8', 'cache-control': 'no-store', 'content-length': Buffer.byteLength(text) });
-  res.end(text);
+  sendError(res, r.status, r.code, r.message, r.headers);
 }
 
 /** Answers a WebSocket upgrade request with the refusal instead of switching protocols, then closes the socket. */
 export function refuseUpgrade(socket: Duplex, r: Refusal): void {
-  const text = body(r);
-  const extra = Object.entries(r.headers ?? {}).map(([k, v]) => `${k}: ${v}\r\n`).join('');
-  socket.end(
-    `HTTP/1.1 ${r.status} ${STATUS_TEXT[r.status]}\r\nContent-Type: application/json; charset=utf-8\r\nContent-Length: ${Buffer.byteLength(text)}\r\n` +
-      `Cache-Control: no-store\r\n${extra}Connection: close\r\n\r\n${text}`,
-  );
+  socket.end(rawErrorResponse(r.status, r.code, r.message, r.headers));
 }
