@@ -6,10 +6,11 @@ import type { Clock, TimerHandle } from '../shared/clock.ts';
 import { TOKEN_PATTERN } from '../shared/protocol/limits.ts';
 import { checkPlayerName, checkRoomId } from '../shared/protocol/validation.ts';
 import type { ErrorMessage, ServerByeMessage, WelcomeMessage } from '../shared/protocol/server-messages.ts';
-import { NEUTRAL_INPUT, validateInputCommand, type InputCommand } from '../shared/sim/input.ts';
+import { NEUTRAL_INPUT, type InputCommand } from '../shared/sim/input.ts';
 import type { BodyDescriptor, SimEvent } from '../shared/sim/types.ts';
 import { RealClock } from './clock.ts';
 import { Emitter } from './emitter.ts';
+import { GameInputMapper, type PlayerInput } from './game-input.ts';
 import type { InputLeadOptions } from './input-sender.ts';
 import type { InterpolatedFrame, InterpolationOptions } from './interpolation.ts';
 import { LinkSession, type LinkClosedInfo, type SnapshotInfo } from './link-session.ts';
@@ -146,6 +147,7 @@ export class NetClient {
   private session: LinkSession | null = null;
   private stateValue: NetClientState = 'connecting';
   private input: InputCommand = { ...NEUTRAL_INPUT };
+  private readonly gameInput = new GameInputMapper();
   private welcomeMsg: WelcomeMessage | null = null;
   private readonly dynamic = new Map<number, BodyDescriptor>();
   private pendingDescriptorRemoval: Array<{ id: number; afterTick: number }> = [];
@@ -219,12 +221,13 @@ export class NetClient {
     return new Promise((resolve, reject) => this.waiters.push({ resolve, reject }));
   }
 
-  /** Sets the command sent for the coming ticks (kept across reconnects); throws on an invalid command. */
-  setInput(cmd: InputCommand): void {
-    const v = validateInputCommand(cmd);
-    if (!v.ok) throw new Error(`setInput: ${v.error}`);
-    this.input = v.command;
-    this.session?.setInput(v.command);
+  /**
+   * Sets the command sent for the coming ticks (kept across reconnects), with the scenario's game input fields by
+   * name (`{...cmd, kick: 1}`); throws on an invalid value or a field the scenario does not declare.
+   */
+  setInput(cmd: InputCommand | PlayerInput): void {
+    this.input = this.gameInput.set(cmd);
+    this.session?.setInput(this.input);
   }
 
   /** The estimated server tick (fractional) at a local time (default now); null before a welcome. */
@@ -328,6 +331,10 @@ export class NetClient {
   }
 
   private onWelcome(w: WelcomeMessage): void {
+    const fitted = this.gameInput.welcome(w.scenario.game?.input ?? []);
+    this.input = fitted.command;
+    this.session?.setInput(this.input);
+    if (fitted.unknown.length > 0) this.emitter.emit('protocolError', `setInput: the scenario declares no game input ${fitted.unknown.join(', ')}; dropped`);
     this.welcomeMsg = w;
     this.resumeTokenValue = w.resumeToken;
     this.attempts = 0;

@@ -18,6 +18,7 @@ import type { SimEvent } from '../shared/sim/types.ts';
 import { admitSeat, type SessionAccess } from './access/admission.ts';
 import type { ResumeHolder } from './access/resume-tokens.ts';
 import { CloseCode, type ServerConnection } from './connection.ts';
+import { fitInputMessage } from './game-input-gate.ts';
 import { OfferResult } from './input-buffer.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
@@ -206,8 +207,14 @@ export class ClientSession implements RoomMember, ResumeHolder {
           this.end(ByeReason.Flood, `more than ${this.ctx.limits.inputs.perSecond} input messages per second`, CloseCode.PolicyViolation);
           return;
         }
-        for (let i = 0; i < msg.commands.length; i++) {
-          const r = this.room.offerInput(this.playerId, msg.firstTick + i, msg.commands[i]);
+        const fit = fitInputMessage(msg, this.room.sim.gameInputFields ?? []);
+        if (!fit.ok) {
+          this.refuse(ErrorCode.BadInput, fit.error);
+          return;
+        }
+        if (fit.clamped > 0) this.ctx.metrics.inputsClamped.inc(fit.clamped);
+        for (let i = 0; i < fit.commands.length; i++) {
+          const r = this.room.offerInput(this.playerId, msg.firstTick + i, fit.commands[i]);
           if (r === OfferResult.Late) this.stats.inputsLate++;
           else if (r === OfferResult.TooFar) this.stats.inputsTooFar++;
         }

@@ -5,6 +5,7 @@ import type { Clock } from '../shared/clock.ts';
 import { BODY_STATE_STRIDE, BodyFlag, type Vec3Like } from '../shared/physics/index.ts';
 import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '../shared/sim/types.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
+import type { GameInputField } from '../shared/sim/game-input.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import { InputBuffer, OfferResult } from './input-buffer.ts';
@@ -31,6 +32,8 @@ export interface RoomSimulation {
   staticDescriptors(): BodyDescriptor[];
   bodyDescriptor(id: number): BodyDescriptor | undefined | null;
   destroy(): void;
+  /** The scenario's game input fields (name order); absent or empty: none. */
+  readonly gameInputFields?: readonly GameInputField[];
   /** The world's WASM heap (for /metrics), when the simulation has one. */
   readonly world?: { freeHeapBytes(): number; totalHeapBytes(): number };
 }

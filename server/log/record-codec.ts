@@ -1,6 +1,6 @@
 // Payload codecs of the input-log record types: header, tick (a TickInputRecord, compact binary), hash,
 // checkpoint, end. Encoders validate and throw a clear Error; decoders throw PayloadError. Pure, no I/O.
-import { validateInputCommand, type InputCommand } from '../../shared/sim/input.ts';
+import { MAX_COMMAND_GAME_VALUES, validateInputCommand, type InputCommand } from '../../shared/sim/input.ts';
 import type { PlayerCommand, PlayerJoin, TickInputRecord } from '../../shared/sim/types.ts';
 import { ByteReader, ByteWriter, PayloadError } from '../../shared/byte-io.ts';
 import { LOG_FORMAT_VERSION, MAX_HEADER_STRING_BYTES, MAX_NAME_BYTES, MAX_PLAYER_ID, type LogHeader } from './log-format.ts';
@@ -9,8 +9,12 @@ const SEED_NUMBER = 0;
 const SEED_STRING = 1;
 
 /** Command field-presence bits: a field is stored only when non-zero. */
-const Field = { MoveX: 1, MoveZ: 2, Yaw: 4, Pitch: 8, Buttons: 16 } as const;
-const FIELD_MASK = 31;
+const Field = { MoveX: 1, MoveZ: 2, Yaw: 4, Pitch: 8, Buttons: 16, Game: 32 } as const;
+const FIELD_MASK = 63;
+
+/** Zigzag: signed integers as unsigned varints (0, −1, 1, −2, … → 0, 1, 2, 3, …). */
+const zigzag = (v: number): number => (v < 0 ? -2 * v - 1 : 2 * v);
+const unzigzag = (u: number): number => (u % 2 === 1 ? -(u + 1) / 2 : u / 2);
 
 const textEncoder = new TextEncoder();
 const utf8Bytes = (text: string): number => textEncoder.encode(text).length;
@@ -142,13 +146,26 @@ function writeCommand(w: ByteWriter, cmd: InputCommand): void {
     (cmd.moveZ !== 0 ? Field.MoveZ : 0) |
     (cmd.yaw !== 0 ? Field.Yaw : 0) |
     (cmd.pitch !== 0 ? Field.Pitch : 0) |
-    (cmd.buttons !== 0 ? Field.Buttons : 0);
+    (cmd.buttons !== 0 ? Field.Buttons : 0) |
+    (cmd.game !== undefined && cmd.game.length > 0 ? Field.Game : 0);
   w.u8(mask);
   if (mask & Field.MoveX) w.i8(cmd.moveX);
   if (mask & Field.MoveZ) w.i8(cmd.moveZ);
   if (mask & Field.Yaw) w.u16(cmd.yaw);
   if (mask & Field.Pitch) w.i16(cmd.pitch);
   if (mask & Field.Buttons) w.u8(cmd.buttons);
+  if (mask & Field.Game) {
+    w.uvarint(cmd.game!.length);
+    for (const v of cmd.game!) w.uvarint(zigzag(v));
+  }
+}
+
+function readGame(r: ByteReader, playerId: number): number[] {
+  const n = r.uvarint('game input count');
+  if (n === 0 || n > MAX_COMMAND_GAME_VALUES) throw new PayloadError(`command of player ${playerId} has ${n} game input values (1..${MAX_COMMAND_GAME_VALUES})`);
+  const game: number[] = [];
+  for (let i = 0; i < n; i++) game.push(unzigzag(r.uvarint('game input value')));
+  return game;
 }
 
 /** Encodes a tick record payload as a fresh array (validated first). */
@@ -212,6 +229,7 @@ export function decodeTick(payload: Uint8Array, start = 0, end = payload.length)
       pitch: mask & Field.Pitch ? r.i16('pitch') : 0,
       buttons: mask & Field.Buttons ? r.u8('buttons') : 0,
     };
+    if (mask & Field.Game) input.game = readGame(r, playerId);
     const v = validateInputCommand(input);
     if (!v.ok || v.clamped) throw new PayloadError(`command of player ${playerId} is out of range`);
     commands.push({ playerId, input });

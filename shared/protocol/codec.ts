@@ -5,6 +5,7 @@ import { Packr, Unpackr } from 'msgpackr';
 import type { SimEvent } from '../sim/types.ts';
 import type { ClientMessage } from './client-messages.ts';
 import { packDescriptors } from './descriptor-codec.ts';
+import { packGameSchema } from './game-schema-codec.ts';
 import { scanMsgpack } from './msgpack-scan.ts';
 import { ClientOpcode, ServerOpcode } from './opcodes.ts';
 import type { ServerMessage } from './server-messages.ts';
@@ -84,7 +85,7 @@ export function encodeClientMessage(m: ClientMessage): Uint8Array {
       return packr.pack(m.seatToken !== undefined || m.resumeToken !== undefined ? [...base, options] : base);
     }
     case 'input':
-      return packr.pack([ClientOpcode.Input, m.firstTick, m.commands.map((c) => [c.moveX, c.moveZ, c.yaw, c.pitch, c.buttons])]);
+      return packr.pack([ClientOpcode.Input, m.firstTick, m.commands.map((c) => (c.game !== undefined && c.game.length > 0 ? [c.moveX, c.moveZ, c.yaw, c.pitch, c.buttons, [...c.game]] : [c.moveX, c.moveZ, c.yaw, c.pitch, c.buttons]))]);
     case 'ack':
       return packr.pack([ClientOpcode.SnapshotAck, m.tick]);
     case 'ping':
@@ -122,6 +123,7 @@ export function encodeServerMessage(m: ServerMessage): Uint8Array {
               min: { x: m.scenario.bounds.min.x, y: m.scenario.bounds.min.y, z: m.scenario.bounds.min.z },
               max: { x: m.scenario.bounds.max.x, y: m.scenario.bounds.max.y, z: m.scenario.bounds.max.z },
             },
+            ...packGameSchema(m.scenario.game ?? {}),
           },
           snapshotFormat: { positionSteps: [...m.snapshotFormat.positionSteps], rotationBits: m.snapshotFormat.rotationBits },
           staticBodies: packDescriptors(m.staticBodies),

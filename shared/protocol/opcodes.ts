@@ -4,8 +4,9 @@
 /**
  * Bumped on any incompatible change to a message or the snapshot bit layout; hello and welcome must agree.
  * 2: hello's optional options map (seat and resume tokens); the welcome's resume fields; seat/resume codes.
+ * 3: the game API: game input values in input commands, the welcome's game schema (docs/protocol.md).
  */
-export const PROTOCOL_VERSION = 2;
+export const PROTOCOL_VERSION = 3;
 
 /** Opcodes of messages a client sends to the server (1–15). */
 export const ClientOpcode = {

@@ -4,6 +4,7 @@ import { describeValue } from '../sim/describe-value.ts';
 import type { SimEvent } from '../sim/types.ts';
 import { decodeFrame, MAX_SERVER_FRAME_DEPTH, toBytes } from './codec.ts';
 import { unpackDescriptors } from './descriptor-codec.ts';
+import { unpackGameSchema, type GameSchemaInfo } from './game-schema-codec.ts';
 import { MAX_TOKEN_LENGTH, TOKEN_PATTERN } from './limits.ts';
 import { PROTOCOL_VERSION, ServerOpcode, type ByeReason, type ErrorCode } from './opcodes.ts';
 import type { ScenarioInfo, ServerMessage, WelcomeMessage } from './server-messages.ts';
@@ -60,12 +61,20 @@ function decodeScenario(v: unknown): ScenarioInfo {
   const params: Record<string, number> = {};
   for (const [k, p] of Object.entries(v.params)) params[k] = num(p, `welcome.scenario.params.${k}`);
   need(isObject(v.bounds), 'welcome.scenario.bounds must be {min, max}');
-  return {
+  const info: ScenarioInfo = {
     name: str(v.name, 'welcome.scenario.name'),
     description: str(v.description, 'welcome.scenario.description'),
     params,
     bounds: { min: vec3(v.bounds.min, 'welcome.scenario.bounds.min'), max: vec3(v.bounds.max, 'welcome.scenario.bounds.max') },
   };
+  let game: GameSchemaInfo;
+  try {
+    game = unpackGameSchema(v, 'welcome.scenario');
+  } catch (err) {
+    throw new DecodeError((err as Error).message);
+  }
+  if (Object.keys(game).length > 0) info.game = game;
+  return info;
 }
 
 function decodeWelcome(v: unknown): WelcomeMessage {

@@ -2,6 +2,7 @@
 // docs/protocol.md). The client decodes them with server-message-decoder.ts.
 import type { BodyDescriptor, SimEvent } from '../sim/types.ts';
 import type { ByeReason, ErrorCode } from './opcodes.ts';
+import type { GameSchemaInfo } from './game-schema-codec.ts';
 import type { Bounds, SnapshotFormatSpec } from './quantization.ts';
 
 /** What a client needs to know about the room's scenario. */
@@ -12,6 +13,8 @@ export interface ScenarioInfo {
   params: Record<string, number>;
   /** The region bodies live in (also the snapshot position grid). */
   bounds: Bounds;
+  /** The scenario's game-defined input (and, later, state and messages); absent parts: none declared. */
+  game?: GameSchemaInfo;
 }
 
 /** Answer to hello: who you are, where the room's clock stands, and everything needed to draw the world. */

@@ -112,8 +112,8 @@ function decodeInput(fields: unknown[]): ClientDecodeResult {
   let clamped = 0;
   for (let i = 0; i < list.length; i++) {
     const c = list[i];
-    if (!Array.isArray(c) || c.length !== 5) return bad(`input.commands[${i}] must be [moveX, moveZ, yaw, pitch, buttons]`, ErrorCode.BadInput);
-    const v = validateInputCommand({ moveX: c[0], moveZ: c[1], yaw: c[2], pitch: c[3], buttons: c[4] });
+    if (!Array.isArray(c) || (c.length !== 5 && c.length !== 6)) return bad(`input.commands[${i}] must be [moveX, moveZ, yaw, pitch, buttons] or [moveX, moveZ, yaw, pitch, buttons, [game…]]`, ErrorCode.BadInput);
+    const v = validateInputCommand({ moveX: c[0], moveZ: c[1], yaw: c[2], pitch: c[3], buttons: c[4], game: c.length === 6 ? c[5] : undefined });
     if (!v.ok) return bad(`input.commands[${i}] (tick ${firstTick + i}): ${v.error}`, ErrorCode.BadInput);
     if (v.clamped) clamped++;
     commands.push(v.command);

@@ -1,6 +1,7 @@
 // The ScenarioContext a Simulation hands its scenario: spawn/remove with events and records, emit, the tick, the
 // characters and the tick's inputs. Rejects what a checkpoint could not carry (callbacks on bodies spawned mid-run).
 import type { BodyHandle, QuatLike, ShapeSpec, Vec3Like } from '../physics/index.ts';
+import { gameInputValues, type GameInputValues } from './game-input.ts';
 import type { ScenarioContext, SpawnOptions } from './scenario.ts';
 import { createBody, destroyBody, type SimBase } from './sim-core.ts';
 
@@ -50,6 +51,11 @@ export function makeScenarioContext(core: SimBase): ScenarioContext {
     },
     inputs() {
       return core.tickInputs;
+    },
+    gameInput(playerId: number): GameInputValues {
+      const applied = core.tickInputs.find((c) => c.playerId === playerId)?.input ?? core.players.get(playerId)?.input;
+      if (applied === undefined) throw new Error(`ctx.gameInput: player ${String(playerId)} is not in the game`);
+      return gameInputValues(applied.game, core.gameInputFields);
     },
   };
 }

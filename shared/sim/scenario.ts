@@ -2,6 +2,7 @@
 // points, render hints). Scenarios live in scenarios/; the Simulation builds and drives them through this interface.
 import { describeValue } from './describe-value.ts';
 import type { BodyHandle, BodyOptions, PhysicsWorldOptions, QuatLike, ShapeSpec, Vec3Like } from '../physics/index.ts';
+import type { GameInputFieldSpec, GameInputValues } from './game-input.ts';
 import type { Prng } from './prng.ts';
 import type { CharacterState, PlayerCommand, SimEvent } from './types.ts';
 
@@ -63,6 +64,8 @@ export interface ScenarioContext {
   characters(): readonly CharacterState[];
   /** The commands applied this tick, sorted by player id (e.g. a player-driven body reads them). */
   inputs(): readonly PlayerCommand[];
+  /** A present player's game-defined input values this tick, by field name (ScenarioDefinition.input). */
+  gameInput(playerId: number): GameInputValues;
 }
 
 /** The live side of a scenario, returned by build(). Keep body ids, not handles, across ticks. */
@@ -89,6 +92,11 @@ export interface ScenarioDefinition {
   /** The scripted golden run: how many ticks, how many scripted bots. */
   golden: { ticks: number; bots: number };
   players?: PlayerRules;
+  /**
+   * Game-defined input fields players send beside the built-in command, by name: `{kind: 'button'}` (0 or 1) or
+   * `{kind: 'axis', min, max}` (integers). At most 16; the SDK sends them by name (`setInput({...cmd, kick: 1})`).
+   */
+  input?: Readonly<Record<string, GameInputFieldSpec>>;
   /** World limits (maxBodies, …) this scene needs. */
   world?: Omit<PhysicsWorldOptions, 'wasmBinary' | 'wasmUrl'>;
   /** Builds the static scene and returns the live instance. */

@@ -4,6 +4,7 @@ import { IDENTITY_QUAT, type PhysicsWorld, type QuatLike, type SensorEvent, type
 import type { BodyKind, BodyRecord, BodyRegistry } from './body-registry.ts';
 import { makeRecord } from './body-registry.ts';
 import type { BulletList } from './bullets.ts';
+import type { GameInputField } from './game-input.ts';
 import type { PlayerTable, ResolvedPlayerRules } from './players.ts';
 import type { Prng } from './prng.ts';
 import type { ParamValues, ScenarioContext, ScenarioDefinition, ScenarioInstance, SpawnOptions } from './scenario.ts';
@@ -23,6 +24,8 @@ export interface SimBase {
   readonly world: PhysicsWorld;
   readonly rng: Prng;
   readonly rules: ResolvedPlayerRules;
+  /** The scenario's game input fields, sorted by name (empty when it declares none). */
+  readonly gameInputFields: readonly GameInputField[];
   readonly registry: BodyRegistry;
   readonly players: PlayerTable;
   readonly bullets: BulletList;

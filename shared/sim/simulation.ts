@@ -6,6 +6,7 @@ import { BodyRegistry } from './body-registry.ts';
 import { BulletList } from './bullets.ts';
 import { captureData, restoreCheckpoint, saveCheckpoint, type Checkpoint } from './checkpoint.ts';
 import { decodeCheckpoint, encodeCheckpoint } from './checkpoint-codec.ts';
+import { resolveGameInputFields, type GameInputField } from './game-input.ts';
 import { PlayerTable, resolvePlayerRules } from './players.ts';
 import { Prng } from './prng.ts';
 import { makeScenarioContext } from './scenario-context.ts';
@@ -67,6 +68,7 @@ export class Simulation {
     const params: ParamValues = resolveParams(def, opts.params ?? {});
     const seed = checkSeed(opts.seed ?? 1);
     const rules = resolvePlayerRules(def.players, `scenario ${def.name}`);
+    const gameInputFields = resolveGameInputFields(def.input, def.name);
     const world = await PhysicsWorld.create({ ...(def.world ?? {}), ...(opts.worldOptions ?? {}) });
     const base: SimBase = {
       def,
@@ -75,6 +77,7 @@ export class Simulation {
       world,
       rng: new Prng(seed),
       rules,
+      gameInputFields,
       registry: new BodyRegistry(),
       players: new PlayerTable(),
       bullets: new BulletList(),
@@ -129,6 +132,11 @@ export class Simulation {
   /** The seed the PRNG started from. */
   get seed(): number | string {
     return this.core.seed;
+  }
+
+  /** The scenario's game input fields, sorted by name: the order of InputCommand.game. */
+  get gameInputFields(): readonly GameInputField[] {
+    return this.core.gameInputFields;
   }
 
   /** The physics world (read-only use: queries, body handles). Changing it directly breaks determinism. */

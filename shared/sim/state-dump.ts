@@ -91,6 +91,11 @@ function hashPlayer(h: Hasher64, p: PlayerDump): void {
   h.word(p.playerId).word(p.joinIndex).word(p.bodyId).string(p.name);
   const i = p.input;
   h.word(i.moveX).word(i.moveZ).word(i.yaw).word(i.pitch).word(i.buttons).word(p.nextFireTick);
+  // Game input only where a scenario declares it, so scenarios without it hash exactly as before.
+  if (i.game !== undefined && i.game.length > 0) {
+    h.word(i.game.length);
+    for (const v of i.game) h.word(v);
+  }
   h.f32Bits(p.position[0]).f32Bits(p.position[1]).f32Bits(p.position[2]);
   h.f64Bits(p.velocity[0]).f64Bits(p.velocity[1]).f64Bits(p.velocity[2]);
   h.word(p.groundState).f64Bits(p.pendingJumpSpeed);

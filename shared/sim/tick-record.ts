@@ -1,6 +1,8 @@
 // Validation of one tick's input record before anything of it is applied: the tick number, sorted unique player
-// ids, leaves of present players, joins of absent ones, and every command re-checked by validateInputCommand.
+// ids, leaves of present players, joins of absent ones, and every command re-checked by validateInputCommand and
+// fitted to the scenario's game input fields.
 import { describeValue } from './describe-value.ts';
+import { fitGameInput, type GameInputField } from './game-input.ts';
 import { validateInputCommand, type InputCommand } from './input.ts';
 import type { PlayerCommand, PlayerJoin, TickInputRecord } from './types.ts';
 
@@ -46,7 +48,7 @@ function array(value: unknown, where: string): unknown[] {
  * Checks a record for tick `expectedTick` against the players present before it; returns a clean copy or throws a
  * clear Error (nothing is applied). Commands must already be exact validated InputCommands, as the log stores them.
  */
-export function validateTickRecord(raw: unknown, expectedTick: number, isPresent: (playerId: number) => boolean): TickInputRecord {
+export function validateTickRecord(raw: unknown, expectedTick: number, isPresent: (playerId: number) => boolean, gameFields: readonly GameInputField[] = []): TickInputRecord {
   if (raw === null || typeof raw !== 'object' || Array.isArray(raw)) throw new Error('step: the tick input record must be an object');
   const rec = raw as Record<string, unknown>;
   if (rec.tick !== expectedTick) {
@@ -84,7 +86,10 @@ export function validateTickRecord(raw: unknown, expectedTick: number, isPresent
     const v = validateInputCommand(cr.input);
     if (!v.ok) throw new Error(`${where}: command of player ${id} is invalid: ${v.error}`);
     if (v.clamped) throw new Error(`${where}: command of player ${id} is out of range; pass raw input through validateInputCommand first`);
-    const input: InputCommand = v.command;
+    const fit = fitGameInput(v.command, gameFields);
+    if (!fit.ok) throw new Error(`${where}: command of player ${id} is invalid: ${fit.error}`);
+    if (fit.clamped) throw new Error(`${where}: command of player ${id} has game input outside the declared ranges`);
+    const input: InputCommand = fit.command;
     commands.push({ playerId: id, input });
   }
   ascending(commands.map((c) => c.playerId), `${where} commands`);

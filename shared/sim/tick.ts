@@ -24,6 +24,7 @@ function join(core: SimCore, j: PlayerJoin, tick: number): void {
   const controller = createCharacter(core.world, j.playerId, joinIndex, feet);
   core.players.joinCount++;
   const player = newPlayer(j.playerId, j.name, joinIndex, controller);
+  if (core.gameInputFields.length > 0) player.input = { ...player.input, game: core.gameInputFields.map(() => 0) };
   core.players.add(player);
   core.registry.add(makeRecord('character', controller.body!, CHARACTER_SHAPE, feet, IDENTITY_QUAT, { name: j.name }, { playerId: j.playerId, color: playerColor(joinIndex) }));
   core.tickEvents.push({ type: 'playerJoined', tick, playerId: j.playerId, name: j.name, bodyId: player.bodyId });
@@ -85,7 +86,7 @@ function hook(core: SimCore, name: string, run: () => void): void {
 /** Runs one tick for `raw` (validated first: a bad record throws and changes nothing). Returns the tick's events. */
 export function runTick(core: SimCore, raw: unknown): SimEvent[] {
   if (core.failure) throw new Error(`the simulation failed at tick ${core.tick} and must be restored from a checkpoint: ${core.failure.message}`);
-  const rec: TickInputRecord = validateTickRecord(raw, core.tick, (id) => core.players.has(id));
+  const rec: TickInputRecord = validateTickRecord(raw, core.tick, (id) => core.players.has(id), core.gameInputFields);
   const tick = core.tick;
   core.currentTick = tick;
   core.tickEvents = [];

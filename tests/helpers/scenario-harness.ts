@@ -1,6 +1,7 @@
 // Test harness for scenarios: a ScenarioContext over a PhysicsWorld + Prng that steps a scenario the way the
 // Simulation does (inputs → characters move → physics step → onTick → sorted sensor events → onEvents), with
 // simple walking characters, spawn/remove/emit bookkeeping and bounds removal. Tests only; not the Simulation.
+import { gameInputValues, resolveGameInputFields } from '../../shared/sim/game-input.ts';
 import '../../server/physics-node.ts';
 import { CharacterController, CollisionLayer, PhysicsWorld, type BodyHandle, type QuatLike, type ShapeSpec, type Vec3Like } from '../../shared/physics/index.ts';
 import { walkVelocity } from '../../shared/sim/controls.ts';
@@ -64,6 +65,11 @@ export class ScenarioHarness {
       },
       characters: () => this.characters(),
       inputs: () => this.tickInputs,
+      gameInput: (playerId) => {
+        const cmd = this.tickInputs.find((c) => c.playerId === playerId);
+        if (!cmd) throw new Error(`gameInput: player ${playerId} has no command this tick`);
+        return gameInputValues(cmd.input.game, resolveGameInputFields(def.input, def.name));
+      },
     };
   }
 

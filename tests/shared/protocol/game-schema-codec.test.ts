@@ -1,0 +1,50 @@
+// Tests of the game API's wire form: game input values in input commands (checked like every client field) and the
+// welcome's game schema (round trip, and a clear refusal of a malformed one).
+import { describe, expect, it } from 'vitest';
+import { decodeClientMessage, decodeServerMessage, encodeClientMessage, encodeServerMessage, packValue, unpackFrame } from '../../../shared/protocol/index.ts';
+import { NEUTRAL_INPUT } from '../../../shared/sim/input.ts';
+import { sampleWelcome } from './sample-messages.ts';
+
+const withGame = { ...sampleWelcome, scenario: { ...sampleWelcome.scenario, game: { input: [{ name: 'kick', min: 0, max: 1 }, { name: 'power', min: -10, max: 10 }] } } };
+
+describe('game-schema-codec', () => {
+  it('carries game input values in an input command and reads them back as canonical integers', () => {
+    const r = decodeClientMessage(encodeClientMessage({ type: 'input', firstTick: 9, commands: [{ ...NEUTRAL_INPUT, game: [1, -0.3, 2.5] }] }));
+    if (!r.ok || r.message.type !== 'input') throw new Error(`refused: ${JSON.stringify(r)}`);
+    expect(r.message.commands[0].game).toEqual([1, 0, 3]);
+    expect(Object.is(r.message.commands[0].game![1], 0)).toBe(true);
+    expect(r.clampedCommands).toBe(1);
+  });
+
+  it('sends a command without game values in the five-element form', () => {
+    expect(encodeClientMessage({ type: 'input', firstTick: 1, commands: [NEUTRAL_INPUT] })).toEqual(packValue([2, 1, [[0, 0, 0, 0, 0]]]));
+  });
+
+  it('refuses malformed game values as bad-input naming the command and the value', () => {
+    const frame = (game: unknown): ReturnType<typeof decodeClientMessage> => decodeClientMessage(packValue([2, 4, [[0, 0, 0, 0, 0, game]]]));
+    expect(frame('x')).toMatchObject({ ok: false, code: 'bad-input', error: 'input.commands[0] (tick 4): game must be an array of numbers, got "x"' });
+    expect(frame([1, 'a'])).toMatchObject({ ok: false, code: 'bad-input', error: 'input.commands[0] (tick 4): game[1] must be a number, got "a"' });
+    expect(frame(new Array(17).fill(0))).toMatchObject({ ok: false, error: 'input.commands[0] (tick 4): game must have at most 16 values, got 17' });
+    expect(frame([Number.POSITIVE_INFINITY])).toMatchObject({ ok: false, error: 'input.commands[0] (tick 4): game[0] must be finite, got Infinity' });
+    expect(decodeClientMessage(packValue([2, 4, [[0, 0, 0, 0, 0, [], 1]]]))).toMatchObject({ ok: false, code: 'bad-input' });
+  });
+
+  it('round-trips a welcome with a game schema and leaves the key out without one', () => {
+    const back = decodeServerMessage(encodeServerMessage(withGame));
+    expect(back).toEqual({ ok: true, message: withGame });
+    const plain = decodeServerMessage(encodeServerMessage(sampleWelcome));
+    expect(plain.ok && plain.message.type === 'welcome' && 'game' in plain.message.scenario).toBe(false);
+  });
+
+  it('refuses a welcome whose game input rows are malformed or unsorted', () => {
+    const decode = (input: unknown): string => {
+      const [op, map] = unpackFrame(encodeServerMessage(sampleWelcome)) as [number, { scenario: Record<string, unknown> }];
+      map.scenario.input = input;
+      const r = decodeServerMessage(packValue([op, map]));
+      return r.ok ? 'ok' : r.error;
+    };
+    expect(decode([['b', 0, 1], ['a', 0, 1]])).toMatch(/welcome\.scenario\.input must be sorted by name/);
+    expect(decode([['a', 1, 1]])).toMatch(/welcome\.scenario\.input\[0\] must be \[name, min, max\]/);
+    expect(decode('nope')).toMatch(/welcome\.scenario\.input must be an array/);
+  });
+});
