@@ -7,10 +7,12 @@ import { TOKEN_PATTERN } from '../shared/protocol/limits.ts';
 import { checkPlayerName, checkRoomId } from '../shared/protocol/validation.ts';
 import type { ErrorMessage, ServerByeMessage, WelcomeMessage } from '../shared/protocol/server-messages.ts';
 import { NEUTRAL_INPUT, type InputCommand } from '../shared/sim/input.ts';
+import type { GameStateValue, GameStateValues } from '../shared/sim/game-state.ts';
 import type { BodyDescriptor, SimEvent } from '../shared/sim/types.ts';
 import { RealClock } from './clock.ts';
 import { Emitter } from './emitter.ts';
 import { GameInputMapper, type PlayerInput } from './game-input.ts';
+import { GameStateMirror, type GameStateChange } from './game-state.ts';
 import type { InputLeadOptions } from './input-sender.ts';
 import type { InterpolatedFrame, InterpolationOptions } from './interpolation.ts';
 import { LinkSession, type LinkClosedInfo, type SnapshotInfo } from './link-session.ts';
@@ -71,6 +73,8 @@ export interface NetClientEvents {
   snapshot: SnapshotInfo;
   /** Simulation events, in tick order. */
   events: SimEvent[];
+  /** The room's game state changed (with the snapshot that brought it): the whole state and the changed names. */
+  gameState: GameStateChange;
   /** The server refused something (the connection may stay open). */
   serverError: ErrorMessage;
   /** The server said goodbye. */
@@ -148,6 +152,7 @@ export class NetClient {
   private stateValue: NetClientState = 'connecting';
   private input: InputCommand = { ...NEUTRAL_INPUT };
   private readonly gameInput = new GameInputMapper();
+  private readonly gameStateMirror = new GameStateMirror();
   private welcomeMsg: WelcomeMessage | null = null;
   private readonly dynamic = new Map<number, BodyDescriptor>();
   private pendingDescriptorRemoval: Array<{ id: number; afterTick: number }> = [];
@@ -207,6 +212,14 @@ export class NetClient {
   /** How the client ended, once closed. */
   get closed(): ClosedInfo | null {
     return this.closedInfo;
+  }
+
+  /**
+   * The room's replicated game state by field name (empty until the first snapshot after a welcome); type it with
+   * your scenario's state: `client.gameState<{ score: number; phase: string }>()`.
+   */
+  gameState<S extends GameStateValues = GameStateValues>(): Readonly<Partial<S>> {
+    return this.gameStateMirror.state as Readonly<Partial<S>>;
   }
 
   /** Subscribes to an event; returns the unsubscribe function. */
@@ -321,6 +334,7 @@ export class NetClient {
         welcome: (w) => this.session === session && this.onWelcome(w),
         snapshot: (s) => this.session === session && this.onSnapshot(s),
         events: (e) => this.session === session && this.emitter.emit('events', e),
+        gameState: (values) => this.session === session && this.onGameState(values),
         serverError: (e) => this.session === session && this.emitter.emit('serverError', e),
         bye: (b) => this.session === session && this.emitter.emit('bye', b),
         protocolError: (m) => this.session === session && this.emitter.emit('protocolError', m),
@@ -333,6 +347,7 @@ export class NetClient {
   private onWelcome(w: WelcomeMessage): void {
     const fitted = this.gameInput.welcome(w.scenario.game?.input ?? []);
     this.input = fitted.command;
+    this.gameStateMirror.welcome(w.scenario.game?.state ?? []);
     this.session?.setInput(this.input);
     if (fitted.unknown.length > 0) this.emitter.emit('protocolError', `setInput: the scenario declares no game input ${fitted.unknown.join(', ')}; dropped`);
     this.welcomeMsg = w;
@@ -345,6 +360,12 @@ export class NetClient {
     this.setState('connected');
     this.emitter.emit('welcome', w);
     for (const waiter of this.waiters.splice(0)) waiter.resolve(w);
+  }
+
+  private onGameState(values: GameStateValue[]): void {
+    const change = this.gameStateMirror.apply(values);
+    if (typeof change === 'string') this.emitter.emit('protocolError', change);
+    else if (change !== null) this.emitter.emit('gameState', change);
   }
 
   private onSnapshot(s: SnapshotInfo): void {

@@ -105,6 +105,8 @@ export class ClientSession implements RoomMember, ResumeHolder {
   private room: Room | null = null;
   private playerId = 0;
   private encoder: SnapshotEncoder | null = null;
+  /** The game state version this client was last sent (−1: none yet). */
+  private heldStateVersion = -1;
   /** The seat this session's hello used, until the join it was for succeeds (given back if it fails). */
   private seatId: string | null = null;
 
@@ -385,7 +387,8 @@ export class ClientSession implements RoomMember, ResumeHolder {
       return;
     }
     // The room quantizes and frames once per tick what its members share.
-    const { message, encoded } = this.room.snapshots.snapshotFor(this.encoder, frame);
+    const { message, encoded, stateVersion } = this.room.snapshots.snapshotFor(this.encoder, frame, this.heldStateVersion);
+    this.heldStateVersion = stateVersion;
     const size = this.sendEncoded(message);
     this.stats.snapshotsSent++;
     this.stats.snapshotBytes += size;

@@ -6,6 +6,7 @@ import { BODY_STATE_STRIDE, BodyFlag, type Vec3Like } from '../shared/physics/in
 import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '../shared/sim/types.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { GameInputField } from '../shared/sim/game-input.ts';
+import type { GameStateField, GameStateValue } from '../shared/sim/game-state.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import { InputBuffer, OfferResult } from './input-buffer.ts';
@@ -34,6 +35,12 @@ export interface RoomSimulation {
   destroy(): void;
   /** The scenario's game input fields (name order); absent or empty: none. */
   readonly gameInputFields?: readonly GameInputField[];
+  /** The scenario's game state fields (name order); absent or empty: none. */
+  readonly gameStateFields?: readonly GameStateField[];
+  /** Changes whenever the game state does. */
+  readonly gameStateVersion?: number;
+  /** The game state values in field order. */
+  gameStateValues?(): GameStateValue[];
   /** The world's WASM heap (for /metrics), when the simulation has one. */
   readonly world?: { freeHeapBytes(): number; totalHeapBytes(): number };
 }
@@ -178,7 +185,13 @@ export class Room {
     this.bounds = opts.bounds ?? { min: { x: -500, y: -500, z: -500 }, max: { x: 500, y: 500, z: 500 } };
     this.params = opts.params;
     this.seed = opts.seed;
-    this.snapshots = new SnapshotFanOut({ bounds: this.bounds, isSceneStatic: (id) => this.isSceneStatic(id), describe: (id) => sim.bodyDescriptor(id) ?? undefined });
+    this.snapshots = new SnapshotFanOut({
+      bounds: this.bounds,
+      isSceneStatic: (id) => this.isSceneStatic(id),
+      describe: (id) => sim.bodyDescriptor(id) ?? undefined,
+      gameStateVersion: () => ((sim.gameStateFields?.length ?? 0) > 0 ? (sim.gameStateVersion ?? 0) : null),
+      gameStateValues: () => sim.gameStateValues?.() ?? [],
+    });
     const initial = sim.readBodyStates();
     this.lastBodyCount = initial.count;
     for (let i = 0; i < initial.count; i++) if ((initial.flags[i] & BodyFlag.Static) !== 0) this.sceneStatics.add(initial.ids[i]);

@@ -19,8 +19,12 @@ function liveDynamicDescriptors(room: Room): BodyDescriptor[] {
 
 /** The scenario's game schema for the welcome (nothing when it declares none). */
 function gameSchema(room: Room): { game?: GameSchemaInfo } {
+  const game: GameSchemaInfo = {};
   const input = room.sim.gameInputFields ?? [];
-  return input.length > 0 ? { game: { input } } : {};
+  const state = room.sim.gameStateFields ?? [];
+  if (input.length > 0) game.input = input;
+  if (state.length > 0) game.state = state.map((f) => ({ name: f.name, kind: f.kind, maxLength: f.maxLength }));
+  return Object.keys(game).length > 0 ? { game } : {};
 }
 
 /** The welcome for `playerId`, and a snapshot encoder that counts the welcome's descriptors as delivered. */

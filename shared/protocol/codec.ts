@@ -136,6 +136,7 @@ export function encodeServerMessage(m: ServerMessage): Uint8Array {
     case 'pong':
       return packr.pack([ServerOpcode.Pong, m.clientTimeMs, m.serverTick, m.serverTimeMs, m.missedInputTicks]);
     case 'snapshot':
+      if (m.state !== undefined) return packr.pack([ServerOpcode.Snapshot, m.bytes, m.descriptors.length > 0 ? packDescriptors(m.descriptors) : null, m.state]);
       return packr.pack([ServerOpcode.Snapshot, m.bytes, m.descriptors.length > 0 ? packDescriptors(m.descriptors) : null]);
     case 'events':
       return packr.pack([ServerOpcode.Events, m.events.map(plainEvent)]);

@@ -1,18 +1,26 @@
-// The wire form of a scenario's game schema inside the welcome's scenario map: its game input fields as
-// [name, min, max] rows. Encoders leave the key out when a scenario declares nothing, so built-in welcomes are unchanged.
+// The wire form of a scenario's game schema inside the welcome's scenario map (game input fields as [name, min, max]
+// rows, state fields as [name, kind, maxLength] rows) and the check of a snapshot's game state values. Encoders leave
+// a key out when a scenario declares nothing, so built-in welcomes are unchanged.
 import { describeValue } from '../sim/describe-value.ts';
 import { GAME_NAME_PATTERN, MAX_GAME_INPUT_ABS, MAX_GAME_INPUT_FIELDS, type GameInputField } from '../sim/game-input.ts';
+import { MAX_GAME_STATE_FIELDS, MAX_GAME_STATE_STRING_LENGTH, type GameStateField, type GameStateValue } from '../sim/game-state.ts';
 
 /** The game schema a client learns from the welcome (what the SDK needs to speak the scenario's game API). */
 export interface GameSchemaInfo {
   /** Game input fields in name order: the order of InputCommand.game. */
   input?: readonly GameInputField[];
+  /** Game state fields in name order: the order of a snapshot's state values. */
+  state?: readonly StateFieldInfo[];
 }
+
+/** A state field as the client learns it (its initial value stays on the server; the first snapshot brings values). */
+export type StateFieldInfo = Omit<GameStateField, 'initial'>;
 
 /** The welcome's scenario-map entries for `schema` (none for an empty schema). */
 export function packGameSchema(schema: GameSchemaInfo): Record<string, unknown> {
   const out: Record<string, unknown> = {};
   if (schema.input && schema.input.length > 0) out.input = schema.input.map((f) => [f.name, f.min, f.max]);
+  if (schema.state && schema.state.length > 0) out.state = schema.state.map((f) => [f.name, f.kind, f.maxLength]);
   return out;
 }
 
@@ -20,7 +28,37 @@ export function packGameSchema(schema: GameSchemaInfo): Record<string, unknown> 
 export function unpackGameSchema(scenario: Record<string, unknown>, what: string): GameSchemaInfo {
   const out: GameSchemaInfo = {};
   if (scenario.input !== undefined) out.input = unpackInputFields(scenario.input, `${what}.input`);
+  if (scenario.state !== undefined) out.state = unpackStateFields(scenario.state, `${what}.state`);
   return out;
+}
+
+function unpackStateFields(raw: unknown, what: string): StateFieldInfo[] {
+  if (!Array.isArray(raw) || raw.length > MAX_GAME_STATE_FIELDS) throw new Error(`${what} must be an array of at most ${MAX_GAME_STATE_FIELDS} [name, kind, maxLength] rows`);
+  const fields: StateFieldInfo[] = [];
+  raw.forEach((row: unknown, i) => {
+    const ok =
+      Array.isArray(row) &&
+      row.length === 3 &&
+      typeof row[0] === 'string' &&
+      GAME_NAME_PATTERN.test(row[0]) &&
+      ((row[1] === 'number' && row[2] === 0) || (row[1] === 'string' && Number.isInteger(row[2]) && row[2] >= 1 && row[2] <= MAX_GAME_STATE_STRING_LENGTH));
+    if (!ok) throw new Error(`${what}[${i}] must be [name, 'number', 0] or [name, 'string', maxLength], got ${describeValue(row)}`);
+    const [name, kind, maxLength] = row as [string, 'number' | 'string', number];
+    if (i > 0 && !(name > fields[i - 1].name)) throw new Error(`${what} must be sorted by name without repeats (at ${describeValue(name)})`);
+    fields.push({ name, kind, maxLength });
+  });
+  return fields;
+}
+
+/** Checks a snapshot's game state values (numbers and strings of at most 64 characters); an error sentence otherwise. */
+export function checkGameStateValues(raw: unknown): GameStateValue[] | string {
+  if (!Array.isArray(raw) || raw.length > MAX_GAME_STATE_FIELDS) return `must be an array of at most ${MAX_GAME_STATE_FIELDS} values`;
+  for (let i = 0; i < raw.length; i++) {
+    const v: unknown = raw[i];
+    const ok = (typeof v === 'number' && Number.isFinite(v)) || (typeof v === 'string' && v.length <= MAX_GAME_STATE_STRING_LENGTH);
+    if (!ok) return `[${i}] must be a finite number or a string of at most ${MAX_GAME_STATE_STRING_LENGTH} characters, got ${describeValue(v)}`;
+  }
+  return raw as GameStateValue[];
 }
 
 function unpackInputFields(raw: unknown, what: string): GameInputField[] {

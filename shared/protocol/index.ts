@@ -19,7 +19,7 @@ export {
   type SnapshotFormat,
   type SnapshotFormatSpec,
 } from './quantization.ts';
-export { packGameSchema, unpackGameSchema, type GameSchemaInfo } from './game-schema-codec.ts';
+export { checkGameStateValues, packGameSchema, unpackGameSchema, type GameSchemaInfo, type StateFieldInfo } from './game-schema-codec.ts';
 export { decodeServerMessage, type ServerDecodeResult } from './server-message-decoder.ts';
 export type { ErrorMessage, EventsMessage, PongMessage, ScenarioInfo, ServerByeMessage, ServerMessage, SnapshotMessage, WelcomeMessage } from './server-messages.ts';
 export { decodeSnapshot, encodeSnapshot, readSnapshotHeader, type SnapshotHeader } from './snapshot-codec.ts';

@@ -4,10 +4,10 @@ import { describeValue } from '../sim/describe-value.ts';
 import type { SimEvent } from '../sim/types.ts';
 import { decodeFrame, MAX_SERVER_FRAME_DEPTH, toBytes } from './codec.ts';
 import { unpackDescriptors } from './descriptor-codec.ts';
-import { unpackGameSchema, type GameSchemaInfo } from './game-schema-codec.ts';
+import { checkGameStateValues, unpackGameSchema, type GameSchemaInfo } from './game-schema-codec.ts';
 import { MAX_TOKEN_LENGTH, TOKEN_PATTERN } from './limits.ts';
 import { PROTOCOL_VERSION, ServerOpcode, type ByeReason, type ErrorCode } from './opcodes.ts';
-import type { ScenarioInfo, ServerMessage, WelcomeMessage } from './server-messages.ts';
+import type { ScenarioInfo, ServerMessage, SnapshotMessage, WelcomeMessage } from './server-messages.ts';
 
 /**
  * A decoded server message, or why it could not be decoded; `serverVersion` is set when the frame is a welcome of
@@ -148,12 +148,18 @@ function decode(value: unknown): ServerMessage {
         missedInputTicks: int(value[4], 'pong.missedInputTicks'),
       };
     case ServerOpcode.Snapshot: {
-      arity(3, 'snapshot');
+      need(value.length === 3 || value.length === 4, `snapshot must have 2 or 3 fields, got ${value.length - 1}`);
       need(value[1] instanceof Uint8Array, 'snapshot.bytes must be binary');
       const descriptors = value[2] === null ? [] : unpackDescriptors(value[2], 'snapshot.descriptors');
       const raw = value[1] as Uint8Array;
       // A plain Uint8Array view (Node's msgpackr hands out Buffers).
-      return { type: 'snapshot', bytes: new Uint8Array(raw.buffer, raw.byteOffset, raw.byteLength), descriptors };
+      const message: SnapshotMessage = { type: 'snapshot', bytes: new Uint8Array(raw.buffer, raw.byteOffset, raw.byteLength), descriptors };
+      if (value.length === 4) {
+        const state = checkGameStateValues(value[3]);
+        need(typeof state !== 'string', `snapshot.state ${state as string}`);
+        message.state = state;
+      }
+      return message;
     }
     case ServerOpcode.Events: {
       arity(2, 'events');

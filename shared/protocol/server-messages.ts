@@ -1,5 +1,6 @@
 // Messages the server sends to a client, as typed objects (the wire form of each is in codec.ts and
 // docs/protocol.md). The client decodes them with server-message-decoder.ts.
+import type { GameStateValue } from '../sim/game-state.ts';
 import type { BodyDescriptor, SimEvent } from '../sim/types.ts';
 import type { ByeReason, ErrorCode } from './opcodes.ts';
 import type { GameSchemaInfo } from './game-schema-codec.ts';
@@ -60,6 +61,8 @@ export interface SnapshotMessage {
   type: 'snapshot';
   bytes: Uint8Array;
   descriptors: BodyDescriptor[];
+  /** The whole game state (values in the welcome's state-field order), present only when it changed since the last one sent. */
+  state?: GameStateValue[];
 }
 
 /** Simulation events (sensor, join/leave, spawn/remove, scenario), reliable and in tick order. */

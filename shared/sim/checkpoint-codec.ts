@@ -133,7 +133,7 @@ function readState(r: ByteReader): Omit<CheckpointData, 'records' | 'characterSt
   const carriedSensor: SensorEvent[] = [];
   const ne = r.count('carried sensor events', 9);
   for (let i = 0; i < ne; i++) carriedSensor.push({ kind: r.u8('event kind') === 1 ? 'enter' : 'exit', sensorId: r.u32('sensor id'), otherId: r.u32('other id') });
-  return { tick, prng, joinCount, nextBodyId, constraintCount, slots, players, bullets, scenarioState, overlaps, carriedSensor };
+  return { tick, prng, joinCount, nextBodyId, constraintCount, slots, players, bullets, scenarioState, gameState: [], overlaps, carriedSensor };
 }
 
 function expectSection(r: ByteReader, tag: number, name: string): ByteReader {
@@ -173,7 +173,7 @@ export function decodeCheckpoint(core: SimCore, bytes: Uint8Array): void {
   const characterStates = new Map<number, Uint8Array>();
   const nc = cr.count('character count', 8);
   for (let i = 0; i < nc; i++) characterStates.set(cr.u32('character player'), cr.u32PrefixedBytes('character state'));
-  if (hasGameSection(core)) readGameSection(expectSection(r, TAG_GAME, 'game'), state.players, core);
+  if (hasGameSection(core)) state.gameState = readGameSection(expectSection(r, TAG_GAME, 'game'), state.players, core);
   else if (r.remaining > 0) throw new Error('checkpoint: a game section, but this scenario declares no game input or state');
   const data: CheckpointData = { ...state, records, characterStates };
   const J = core.world.jolt;

@@ -57,5 +57,12 @@ export function makeScenarioContext(core: SimBase): ScenarioContext {
       if (applied === undefined) throw new Error(`ctx.gameInput: player ${String(playerId)} is not in the game`);
       return gameInputValues(applied.game, core.gameInputFields);
     },
+    setState(name: string, value: number | string): void {
+      if (core.phase !== 'building' && core.phase !== 'tick') throw new Error('ctx.setState: only while building or inside a tick hook');
+      core.gameState.set(name, value);
+    },
+    getState(name: string): number | string {
+      return core.gameState.get(name);
+    },
   };
 }

@@ -3,6 +3,7 @@
 import { describeValue } from './describe-value.ts';
 import type { BodyHandle, BodyOptions, PhysicsWorldOptions, QuatLike, ShapeSpec, Vec3Like } from '../physics/index.ts';
 import type { GameInputFieldSpec, GameInputValues } from './game-input.ts';
+import type { GameStateFieldSpec } from './game-state.ts';
 import type { Prng } from './prng.ts';
 import type { CharacterState, PlayerCommand, SimEvent } from './types.ts';
 
@@ -66,6 +67,10 @@ export interface ScenarioContext {
   inputs(): readonly PlayerCommand[];
   /** A present player's game-defined input values this tick, by field name (ScenarioDefinition.input). */
   gameInput(playerId: number): GameInputValues;
+  /** Publishes a game state value (ScenarioDefinition.state): hashed, checkpointed and sent to clients when it changes. */
+  setState(name: string, value: number | string): void;
+  /** A game state value as last set (or its declared initial value). */
+  getState(name: string): number | string;
 }
 
 /** The live side of a scenario, returned by build(). Keep body ids, not handles, across ticks. */
@@ -97,6 +102,11 @@ export interface ScenarioDefinition {
    * `{kind: 'axis', min, max}` (integers). At most 16; the SDK sends them by name (`setInput({...cmd, kick: 1})`).
    */
   input?: Readonly<Record<string, GameInputFieldSpec>>;
+  /**
+   * Replicated game state by name: `{kind: 'number', initial?}` or `{kind: 'string', maxLength? (≤ 64, default 32),
+   * initial?}`. At most 32 fields. The scenario sets values with ctx.setState; clients get them with snapshots.
+   */
+  state?: Readonly<Record<string, GameStateFieldSpec>>;
   /** World limits (maxBodies, …) this scene needs. */
   world?: Omit<PhysicsWorldOptions, 'wasmBinary' | 'wasmUrl'>;
   /** Builds the static scene and returns the live instance. */

@@ -5,6 +5,7 @@ import type { BodyKind, BodyRecord, BodyRegistry } from './body-registry.ts';
 import { makeRecord } from './body-registry.ts';
 import type { BulletList } from './bullets.ts';
 import type { GameInputField } from './game-input.ts';
+import type { GameStateStore } from './game-state.ts';
 import type { PlayerTable, ResolvedPlayerRules } from './players.ts';
 import type { Prng } from './prng.ts';
 import type { ParamValues, ScenarioContext, ScenarioDefinition, ScenarioInstance, SpawnOptions } from './scenario.ts';
@@ -26,6 +27,8 @@ export interface SimBase {
   readonly rules: ResolvedPlayerRules;
   /** The scenario's game input fields, sorted by name (empty when it declares none). */
   readonly gameInputFields: readonly GameInputField[];
+  /** The scenario's replicated game state. */
+  readonly gameState: GameStateStore;
   readonly registry: BodyRegistry;
   readonly players: PlayerTable;
   readonly bullets: BulletList;

@@ -7,6 +7,7 @@ import { BulletList } from './bullets.ts';
 import { captureData, restoreCheckpoint, saveCheckpoint, type Checkpoint } from './checkpoint.ts';
 import { decodeCheckpoint, encodeCheckpoint } from './checkpoint-codec.ts';
 import { resolveGameInputFields, type GameInputField } from './game-input.ts';
+import { GameStateStore, resolveGameStateFields, type GameStateField, type GameStateValue, type GameStateValues } from './game-state.ts';
 import { PlayerTable, resolvePlayerRules } from './players.ts';
 import { Prng } from './prng.ts';
 import { makeScenarioContext } from './scenario-context.ts';
@@ -69,6 +70,7 @@ export class Simulation {
     const seed = checkSeed(opts.seed ?? 1);
     const rules = resolvePlayerRules(def.players, `scenario ${def.name}`);
     const gameInputFields = resolveGameInputFields(def.input, def.name);
+    const gameState = new GameStateStore(resolveGameStateFields(def.state, def.name));
     const world = await PhysicsWorld.create({ ...(def.world ?? {}), ...(opts.worldOptions ?? {}) });
     const base: SimBase = {
       def,
@@ -78,6 +80,7 @@ export class Simulation {
       rng: new Prng(seed),
       rules,
       gameInputFields,
+      gameState,
       registry: new BodyRegistry(),
       players: new PlayerTable(),
       bullets: new BulletList(),
@@ -137,6 +140,26 @@ export class Simulation {
   /** The scenario's game input fields, sorted by name: the order of InputCommand.game. */
   get gameInputFields(): readonly GameInputField[] {
     return this.core.gameInputFields;
+  }
+
+  /** The scenario's game state fields, sorted by name. */
+  get gameStateFields(): readonly GameStateField[] {
+    return this.core.gameState.fields;
+  }
+
+  /** The game state the scenario published, by field name (a frozen copy). */
+  gameState(): GameStateValues {
+    return this.live().gameState.named();
+  }
+
+  /** The game state values in field order (a copy), for the wire. */
+  gameStateValues(): GameStateValue[] {
+    return this.live().gameState.list();
+  }
+
+  /** Changes whenever the game state does (not part of the hash): equal versions mean equal state. */
+  get gameStateVersion(): number {
+    return this.core.gameState.version;
   }
 
   /** The physics world (read-only use: queries, body handles). Changing it directly breaks determinism. */

@@ -1,7 +1,8 @@
 // The game API end to end on the in-process server: the SDK sends a scenario's named game input, the server checks
-// it as untrusted input, and the room steps and records it.
+// it as untrusted input, and the room steps and records it; the scenario's game state reaches clients with snapshots,
+// only when it changed, and the SDK reports it as typed state with change events.
 import { afterEach, describe, expect, it } from 'vitest';
-import { connect, type NetClient } from '../../sdk/index.ts';
+import { connect, type GameStateChange, type NetClient } from '../../sdk/index.ts';
 import { ErrorCode } from '../../shared/protocol/index.ts';
 import { NEUTRAL_INPUT } from '../../shared/sim/input.ts';
 import { pushBallScenario } from '../shared/sim/helpers/game-scenarios.ts';
@@ -72,5 +73,52 @@ describe('game input (server and SDK)', () => {
     t.input(h.room().sim.tick + 2, [{ ...NEUTRAL_INPUT, game: [1] }]);
     await h.settle(() => t.ofType('error').length > 0);
     expect(t.ofType('error')[0].message).toMatch(/declares no game input fields/);
+  });
+});
+
+describe('game state (server and SDK)', () => {
+  it('names the state fields in the welcome and sends the whole state with the first snapshot', async () => {
+    h = await startHarness({ scenarios: [pushBallScenario] });
+    const t = await h.join('raw');
+    expect(t.welcome!.scenario.game?.state).toEqual([
+      { name: 'phase', kind: 'string', maxLength: 8 },
+      { name: 'pushTicks', kind: 'number', maxLength: 0 },
+    ]);
+    await h.settle(() => t.ofType('snapshot').length >= 1);
+    expect(t.ofType('snapshot')[0].state).toEqual(['idle', 0]);
+  });
+
+  it('sends state again only with snapshots after it changed', async () => {
+    h = await startHarness({ scenarios: [pushBallScenario] });
+    const t = await h.join('raw');
+    const room = h.room();
+    await h.settle(() => t.ofType('snapshot').length >= 10);
+    expect(t.ofType('snapshot').filter((m) => m.state !== undefined)).toHaveLength(1);
+    // Four ticks of pushing, then idle: snapshots (30 Hz) sample the state at their tick.
+    const from = room.sim.tick + 2;
+    t.input(from, [{ ...NEUTRAL_INPUT, game: [0, 50] }, { ...NEUTRAL_INPUT, game: [0, 50] }, { ...NEUTRAL_INPUT, game: [0, 50] }, { ...NEUTRAL_INPUT, game: [0, 50] }, NEUTRAL_INPUT]);
+    await h.settle(() => room.sim.tick > from + 20);
+    const states = t.ofType('snapshot').flatMap((m) => (m.state === undefined ? [] : [m.state]));
+    expect(states[0]).toEqual(['idle', 0]);
+    expect(states.at(-1)).toEqual(['idle', 4]);
+    expect(states.length).toBeGreaterThanOrEqual(3);
+    expect(states.slice(1, -1).every((v) => v[0] === 'pushing')).toBe(true);
+    for (let i = 1; i < states.length; i++) expect(states[i]).not.toEqual(states[i - 1]);
+  });
+
+  it('exposes the state in the SDK and reports each change with the names that changed', async () => {
+    h = await startHarness({ scenarios: [pushBallScenario] });
+    const c = await sdkClient(h, 'ann');
+    const changes: GameStateChange[] = [];
+    c.on('gameState', (change) => changes.push(change));
+    await h.settle(() => changes.length >= 1);
+    expect(c.gameState<{ phase: string; pushTicks: number }>()).toEqual({ phase: 'idle', pushTicks: 0 });
+    c.setInput({ ...NEUTRAL_INPUT, push: 10 });
+    await h.settle(() => (c.gameState<{ pushTicks: number }>().pushTicks ?? 0) >= 3);
+    expect(changes[0].changed).toEqual(['phase', 'pushTicks']);
+    expect(changes[1].changed).toContain('phase');
+    expect(changes[1].state.phase).toBe('pushing');
+    expect(changes.slice(2).every((ch) => ch.changed.join() === 'pushTicks')).toBe(true);
+    c.close();
   });
 });

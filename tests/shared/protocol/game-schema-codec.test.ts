@@ -5,7 +5,16 @@ import { decodeClientMessage, decodeServerMessage, encodeClientMessage, encodeSe
 import { NEUTRAL_INPUT } from '../../../shared/sim/input.ts';
 import { sampleWelcome } from './sample-messages.ts';
 
-const withGame = { ...sampleWelcome, scenario: { ...sampleWelcome.scenario, game: { input: [{ name: 'kick', min: 0, max: 1 }, { name: 'power', min: -10, max: 10 }] } } };
+const withGame = {
+  ...sampleWelcome,
+  scenario: {
+    ...sampleWelcome.scenario,
+    game: {
+      input: [{ name: 'kick', min: 0, max: 1 }, { name: 'power', min: -10, max: 10 }],
+      state: [{ name: 'phase', kind: 'string' as const, maxLength: 12 }, { name: 'score', kind: 'number' as const, maxLength: 0 }],
+    },
+  },
+};
 
 describe('game-schema-codec', () => {
   it('carries game input values in an input command and reads them back as canonical integers', () => {
@@ -46,5 +55,35 @@ describe('game-schema-codec', () => {
     expect(decode([['b', 0, 1], ['a', 0, 1]])).toMatch(/welcome\.scenario\.input must be sorted by name/);
     expect(decode([['a', 1, 1]])).toMatch(/welcome\.scenario\.input\[0\] must be \[name, min, max\]/);
     expect(decode('nope')).toMatch(/welcome\.scenario\.input must be an array/);
+  });
+
+  it('carries game state values with a snapshot only when given', () => {
+    const bytes = new Uint8Array([1, 2, 3]);
+    const back = decodeServerMessage(encodeServerMessage({ type: 'snapshot', bytes, descriptors: [], state: ['play', 3.5] }));
+    expect(back).toEqual({ ok: true, message: { type: 'snapshot', bytes, descriptors: [], state: ['play', 3.5] } });
+    expect(unpackFrame(encodeServerMessage({ type: 'snapshot', bytes, descriptors: [] }))).toHaveLength(3);
+  });
+
+  it('refuses snapshot state values that are neither finite numbers nor short strings', () => {
+    const decode = (state: unknown): string => {
+      const r = decodeServerMessage(packValue([18, new Uint8Array([1]), null, state]));
+      return r.ok ? 'ok' : r.error;
+    };
+    expect(decode([{}])).toMatch(/snapshot\.state \[0\] must be a finite number or a string of at most 64 characters, got an object/);
+    expect(decode(['x'.repeat(65)])).toMatch(/at most 64 characters/);
+    expect(decode(new Array(33).fill(0))).toMatch(/at most 32 values/);
+    expect(decode([1, 'a'])).toBe('ok');
+  });
+
+  it('refuses a welcome whose state rows are malformed', () => {
+    const decode = (state: unknown): string => {
+      const [op, map] = unpackFrame(encodeServerMessage(sampleWelcome)) as [number, { scenario: Record<string, unknown> }];
+      map.scenario.state = state;
+      const r = decodeServerMessage(packValue([op, map]));
+      return r.ok ? 'ok' : r.error;
+    };
+    expect(decode([['a', 'string', 65]])).toMatch(/welcome\.scenario\.state\[0\] must be \[name, 'number', 0\] or \[name, 'string', maxLength\]/);
+    expect(decode([['a', 'bool', 0]])).toMatch(/must be \[name, 'number', 0\]/);
+    expect(decode([['a', 'number', 0]])).toBe('ok');
   });
 });

@@ -5,7 +5,10 @@ import type { ScenarioDefinition } from '../../../../shared/sim/scenario.ts';
 /** The ball's body id in pushBallScenario (the floor is 1). */
 export const PUSH_BALL_ID = 2;
 
-/** A floor and a ball; every tick each player's `push` (−100…100) sets the ball's x speed, `lift` (a button) its y speed. */
+/**
+ * A floor and a ball; every tick each player's `push` (−100…100) sets the ball's x speed, `lift` (a button) its y
+ * speed. Game state: `phase` is 'pushing' on ticks with a push and 'idle' otherwise; `pushTicks` counts those ticks.
+ */
 export const pushBallScenario: ScenarioDefinition = {
   name: 'test-push-ball',
   description: 'Game input pushes a ball.',
@@ -13,6 +16,7 @@ export const pushBallScenario: ScenarioDefinition = {
   bounds: { min: { x: -30, y: -5, z: -30 }, max: { x: 30, y: 30, z: 30 } },
   golden: { ticks: 60, bots: 1 },
   input: { push: { kind: 'axis', min: -100, max: 100 }, lift: { kind: 'button' } },
+  state: { phase: { kind: 'string', maxLength: 8, initial: 'idle' }, pushTicks: { kind: 'number' } },
   build(ctx) {
     ctx.spawn({ kind: 'box', halfExtents: { x: 25, y: 0.5, z: 25 } }, { x: 0, y: -0.5, z: 0 }, null, { motion: 'static', name: 'floor' });
     const ball = ctx.spawn({ kind: 'sphere', radius: 0.5 }, { x: 0, y: 0.5, z: 5 }, null, { motion: 'dynamic', name: 'ball' });
@@ -20,10 +24,14 @@ export const pushBallScenario: ScenarioDefinition = {
     return {
       spawnPoint: (n) => ({ x: -4 + 2 * n, y: 0.05, z: -5 }),
       onTick(c) {
+        let pushing = false;
         for (const cmd of c.inputs()) {
           const g = c.gameInput(cmd.playerId);
           if (g.push !== 0 || g.lift !== 0) c.world.setLinearVelocity(ballId, { x: g.push / 20, y: g.lift * 3, z: 0 });
+          pushing ||= g.push !== 0;
         }
+        c.setState('phase', pushing ? 'pushing' : 'idle');
+        if (pushing) c.setState('pushTicks', (c.getState('pushTicks') as number) + 1);
       },
     };
   },
