@@ -7,6 +7,7 @@ import { TOKEN_PATTERN } from '../shared/protocol/limits.ts';
 import { checkPlayerName, checkRoomId } from '../shared/protocol/validation.ts';
 import type { ErrorMessage, ServerByeMessage, WelcomeMessage } from '../shared/protocol/server-messages.ts';
 import { NEUTRAL_INPUT, type InputCommand } from '../shared/sim/input.ts';
+import { gameMessagePayload } from '../shared/sim/game-messages.ts';
 import type { GameStateValue, GameStateValues } from '../shared/sim/game-state.ts';
 import type { BodyDescriptor, SimEvent } from '../shared/sim/types.ts';
 import { RealClock } from './clock.ts';
@@ -241,6 +242,17 @@ export class NetClient {
   setInput(cmd: InputCommand | PlayerInput): void {
     this.input = this.gameInput.set(cmd);
     this.session?.setInput(this.input);
+  }
+
+  /**
+   * Sends a game message the scenario declares (`sendMessage('pickTeam', { team: 1 })`); the server stamps it with its
+   * next tick. Throws while not connected (messages are not queued across reconnects) and for an undeclared name,
+   * payload field or out-of-range value.
+   */
+  sendMessage(name: string, payload: Readonly<Record<string, number>> = {}): void {
+    const session = this.connectedSession();
+    if (!session || !this.welcomeMsg || this.stateValue !== 'connected') throw new Error(`sendMessage(${name}): not connected`);
+    session.sendGameMessage(name, gameMessagePayload(name, payload, this.welcomeMsg.scenario.game?.messages ?? []));
   }
 
   /** The estimated server tick (fractional) at a local time (default now); null before a welcome. */

@@ -179,6 +179,11 @@ export class LinkSession {
     return (bytes * 8) / 1000;
   }
 
+  /** Sends a game message now (after the welcome). */
+  sendGameMessage(name: string, payload: number[]): void {
+    this.send({ type: 'game', name, payload });
+  }
+
   /** Sets the command for ticks from now on. */
   setInput(cmd: InputCommand): void {
     this.sender.setCommand(cmd);

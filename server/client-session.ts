@@ -243,6 +243,15 @@ export class ClientSession implements RoomMember, ResumeHolder {
       case 'bye':
         this.end(ByeReason.ClientBye, 'goodbye', CloseCode.Normal);
         return;
+      case 'game': {
+        if (this.state !== 'joined' || !this.room) {
+          this.refuse(ErrorCode.UnexpectedMessage, 'game message before the welcome');
+          return;
+        }
+        const refused = this.room.offerMessage(this.playerId, msg.name, msg.payload);
+        if (refused !== null) this.refuse(ErrorCode.BadMessage, `game: ${refused}`);
+        return;
+      }
     }
   }
 

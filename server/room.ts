@@ -6,6 +6,8 @@ import { BODY_STATE_STRIDE, BodyFlag, type Vec3Like } from '../shared/physics/in
 import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '../shared/sim/types.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { GameInputField } from '../shared/sim/game-input.ts';
+import type { GameMessageKind } from '../shared/sim/game-messages.ts';
+import { GameMessageQueue } from './game-message-queue.ts';
 import type { GameStateField, GameStateValue } from '../shared/sim/game-state.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
@@ -35,6 +37,8 @@ export interface RoomSimulation {
   destroy(): void;
   /** The scenario's game input fields (name order); absent or empty: none. */
   readonly gameInputFields?: readonly GameInputField[];
+  /** The scenario's game message kinds (name order); absent or empty: none. */
+  readonly gameMessageKinds?: readonly GameMessageKind[];
   /** The scenario's game state fields (name order); absent or empty: none. */
   readonly gameStateFields?: readonly GameStateField[];
   /** Changes whenever the game state does. */
@@ -162,6 +166,7 @@ export class Room {
   private readonly opts: RoomOptions;
   private readonly players = new Map<number, Player>();
   private pendingLeaves: number[] = [];
+  private readonly gameMessages = new GameMessageQueue();
   private nextPlayerId = 1;
   private closedReason: string | null = null;
   private snapshotAccumulator = 0;
@@ -333,6 +338,12 @@ export class Room {
     return result;
   }
 
+  /** Queues a player's game message for the next tick; returns why it was refused, or null. */
+  offerMessage(playerId: number, name: string, payload: readonly number[]): string | null {
+    if (!this.players.has(playerId)) return 'not in the room';
+    return this.gameMessages.offer(playerId, name, payload, this.sim.gameMessageKinds ?? []);
+  }
+
   /** Whether a body is part of the scene's built static geometry (sent in the welcome, not in snapshots). */
   isSceneStatic(bodyId: number): boolean {
     return this.sceneStatics.has(bodyId);
@@ -380,7 +391,8 @@ export class Room {
       if (taken.repeated) m.inputsRepeated.inc();
       commands.push({ playerId: p.playerId, input: taken.command });
     }
-    const record: TickInputRecord = { tick, leaves, joins, commands };
+    const messages = this.gameMessages.take((id) => this.players.has(id));
+    const record: TickInputRecord = messages.length > 0 ? { tick, leaves, joins, commands, messages } : { tick, leaves, joins, commands };
     this.opts.recorder?.append(record);
     const stepStarted = performance.now();
     const events = this.sim.step(record);

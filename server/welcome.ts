@@ -24,6 +24,8 @@ function gameSchema(room: Room): { game?: GameSchemaInfo } {
   const state = room.sim.gameStateFields ?? [];
   if (input.length > 0) game.input = input;
   if (state.length > 0) game.state = state.map((f) => ({ name: f.name, kind: f.kind, maxLength: f.maxLength }));
+  const messages = room.sim.gameMessageKinds ?? [];
+  if (messages.length > 0) game.messages = messages;
   return Object.keys(game).length > 0 ? { game } : {};
 }
 

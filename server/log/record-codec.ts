@@ -1,6 +1,7 @@
 // Payload codecs of the input-log record types: header, tick (a TickInputRecord, compact binary), hash,
 // checkpoint, end. Encoders validate and throw a clear Error; decoders throw PayloadError. Pure, no I/O.
 import { MAX_COMMAND_GAME_VALUES, validateInputCommand, type InputCommand } from '../../shared/sim/input.ts';
+import { checkGameMessageShape, MAX_GAME_MESSAGE_FIELDS, type GameMessage } from '../../shared/sim/game-messages.ts';
 import type { PlayerCommand, PlayerJoin, TickInputRecord } from '../../shared/sim/types.ts';
 import { ByteReader, ByteWriter, PayloadError } from '../../shared/byte-io.ts';
 import { LOG_FORMAT_VERSION, MAX_HEADER_STRING_BYTES, MAX_NAME_BYTES, MAX_PLAYER_ID, type LogHeader } from './log-format.ts';
@@ -132,6 +133,17 @@ export function checkTickRecord(rec: TickInputRecord): void {
     if (!v.ok) throw new Error(`${where}: command of player ${c.playerId} is invalid: ${v.error}`);
     if (v.clamped) throw new Error(`${where}: command of player ${c.playerId} is not a validated InputCommand (pass it through validateInputCommand first)`);
   }
+  if (rec.messages === undefined) return;
+  if (!Array.isArray(rec.messages)) throw new Error(`${where}: messages must be an array`);
+  prev = -1;
+  for (const m of rec.messages) {
+    if (m === null || typeof m !== 'object') throw new Error(`${where}: a message must be an object`);
+    const id = checkPlayerId(m.playerId, `${where} messages`);
+    if (id < prev) throw new Error(`${where} messages: player ids must be sorted ascending (${prev} then ${id})`);
+    prev = id;
+    const shape = checkGameMessageShape(m.name, m.payload);
+    if (!shape.ok) throw new Error(`${where}: message of player ${id}: ${shape.error}`);
+  }
 }
 
 function checkNextId(id: unknown, prev: number, where: string): number {
@@ -191,6 +203,36 @@ export function writeTickPayload(w: ByteWriter, rec: TickInputRecord): void {
     w.uvarint(c.playerId);
     writeCommand(w, c.input);
   }
+  // Game messages follow only when there are any, so records without them keep their earlier bytes.
+  if (rec.messages !== undefined && rec.messages.length > 0) {
+    w.uvarint(rec.messages.length);
+    for (const m of rec.messages) {
+      w.uvarint(m.playerId);
+      w.varintPrefixedString(m.name);
+      w.uvarint(m.payload.length);
+      for (const v of m.payload) w.uvarint(zigzag(v));
+    }
+  }
+}
+
+function readMessages(r: ByteReader): GameMessage[] {
+  const n = r.uvarint('message count');
+  if (n === 0) throw new PayloadError('trailing bytes after the commands: not a game message section (count 0)');
+  const out: GameMessage[] = [];
+  for (let i = 0, prev = -1; i < n; i++) {
+    const playerId = r.uvarint('message player id');
+    if (playerId > MAX_PLAYER_ID || playerId < prev) throw new PayloadError(`message player id ${playerId} out of range or not sorted (after ${prev})`);
+    prev = playerId;
+    const name = r.varintPrefixedString(64, 'message name');
+    const count = r.uvarint('message payload count');
+    if (count > MAX_GAME_MESSAGE_FIELDS) throw new PayloadError(`message ${name} has ${count} payload values (at most ${MAX_GAME_MESSAGE_FIELDS})`);
+    const payload: number[] = [];
+    for (let k = 0; k < count; k++) payload.push(unzigzag(r.uvarint('message payload value')));
+    const shape = checkGameMessageShape(name, payload);
+    if (!shape.ok) throw new PayloadError(`message of player ${playerId}: ${shape.error}`);
+    out.push({ playerId, name, payload });
+  }
+  return out;
 }
 
 function readPlayerId(r: ByteReader, prev: number, what: string): number {
@@ -234,8 +276,13 @@ export function decodeTick(payload: Uint8Array, start = 0, end = payload.length)
     if (!v.ok || v.clamped) throw new PayloadError(`command of player ${playerId} is out of range`);
     commands.push({ playerId, input });
   }
+  if (r.remaining === 0) {
+    r.expectEnd('tick record');
+    return { tick, leaves, joins, commands };
+  }
+  const messages = readMessages(r);
   r.expectEnd('tick record');
-  return { tick, leaves, joins, commands };
+  return { tick, leaves, joins, commands, messages };
 }
 
 function hexDigit(code: number): number {

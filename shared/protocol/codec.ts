@@ -92,6 +92,8 @@ export function encodeClientMessage(m: ClientMessage): Uint8Array {
       return packr.pack([ClientOpcode.Ping, m.clientTimeMs]);
     case 'bye':
       return packr.pack([ClientOpcode.Bye]);
+    case 'game':
+      return packr.pack([ClientOpcode.GameMessage, m.name, [...m.payload]]);
   }
 }
 

@@ -4,7 +4,8 @@
 /**
  * Bumped on any incompatible change to a message or the snapshot bit layout; hello and welcome must agree.
  * 2: hello's optional options map (seat and resume tokens); the welcome's resume fields; seat/resume codes.
- * 3: the game API: game input values in input commands, the welcome's game schema (docs/protocol.md).
+ * 3: the game API: game input values in input commands, the welcome's game schema, game state in snapshots, game
+ *    messages (docs/protocol.md).
  */
 export const PROTOCOL_VERSION = 3;
 
@@ -15,6 +16,8 @@ export const ClientOpcode = {
   SnapshotAck: 3,
   Ping: 4,
   Bye: 5,
+  /** A game message (ScenarioDefinition.messages): protocol 3. */
+  GameMessage: 6,
 } as const;
 export type ClientOpcode = (typeof ClientOpcode)[keyof typeof ClientOpcode];
 

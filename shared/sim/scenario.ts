@@ -3,6 +3,7 @@
 import { describeValue } from './describe-value.ts';
 import type { BodyHandle, BodyOptions, PhysicsWorldOptions, QuatLike, ShapeSpec, Vec3Like } from '../physics/index.ts';
 import type { GameInputFieldSpec, GameInputValues } from './game-input.ts';
+import type { GameMessageEvent, GameMessageSpec } from './game-messages.ts';
 import type { GameStateFieldSpec } from './game-state.ts';
 import type { Prng } from './prng.ts';
 import type { CharacterState, PlayerCommand, SimEvent } from './types.ts';
@@ -79,6 +80,8 @@ export interface ScenarioInstance {
   spawnPoint(playerIndex: number): Vec3Like;
   /** Runs after the physics step of every tick (spawners, moving platforms, streaming). */
   onTick?(ctx: ScenarioContext): void;
+  /** Runs for each game message of the tick, in record order, after joins and before commands (pick a team, …). */
+  onMessage?(ctx: ScenarioContext, msg: GameMessageEvent): void;
   /** Sees the tick's sorted sensor events after onTick (doors, targets). */
   onEvents?(ctx: ScenarioContext, events: readonly SimEvent[]): void;
   /** Scenario-side state as plain JSON data, for checkpoints and the state hash. */
@@ -107,6 +110,12 @@ export interface ScenarioDefinition {
    * initial?}`. At most 32 fields. The scenario sets values with ctx.setState; clients get them with snapshots.
    */
   state?: Readonly<Record<string, GameStateFieldSpec>>;
+  /**
+   * Game messages players may send by name, each with a payload of named integer fields:
+   * `{pickTeam: {payload: {team: {min: 0, max: 1}}}}`. At most 32 kinds of at most 8 fields. They reach
+   * ScenarioInstance.onMessage on the tick the server stamps them with, and the input log records them.
+   */
+  messages?: Readonly<Record<string, GameMessageSpec>>;
   /** World limits (maxBodies, …) this scene needs. */
   world?: Omit<PhysicsWorldOptions, 'wasmBinary' | 'wasmUrl'>;
   /** Builds the static scene and returns the live instance. */

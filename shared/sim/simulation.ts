@@ -7,6 +7,7 @@ import { BulletList } from './bullets.ts';
 import { captureData, restoreCheckpoint, saveCheckpoint, type Checkpoint } from './checkpoint.ts';
 import { decodeCheckpoint, encodeCheckpoint } from './checkpoint-codec.ts';
 import { resolveGameInputFields, type GameInputField } from './game-input.ts';
+import { resolveGameMessageKinds, type GameMessageKind } from './game-messages.ts';
 import { GameStateStore, resolveGameStateFields, type GameStateField, type GameStateValue, type GameStateValues } from './game-state.ts';
 import { PlayerTable, resolvePlayerRules } from './players.ts';
 import { Prng } from './prng.ts';
@@ -71,6 +72,7 @@ export class Simulation {
     const rules = resolvePlayerRules(def.players, `scenario ${def.name}`);
     const gameInputFields = resolveGameInputFields(def.input, def.name);
     const gameState = new GameStateStore(resolveGameStateFields(def.state, def.name));
+    const gameMessageKinds = resolveGameMessageKinds(def.messages, def.name);
     const world = await PhysicsWorld.create({ ...(def.world ?? {}), ...(opts.worldOptions ?? {}) });
     const base: SimBase = {
       def,
@@ -81,6 +83,7 @@ export class Simulation {
       rules,
       gameInputFields,
       gameState,
+      gameMessageKinds,
       registry: new BodyRegistry(),
       players: new PlayerTable(),
       bullets: new BulletList(),
@@ -140,6 +143,11 @@ export class Simulation {
   /** The scenario's game input fields, sorted by name: the order of InputCommand.game. */
   get gameInputFields(): readonly GameInputField[] {
     return this.core.gameInputFields;
+  }
+
+  /** The scenario's game message kinds, sorted by name (payload fields in name order). */
+  get gameMessageKinds(): readonly GameMessageKind[] {
+    return this.core.gameMessageKinds;
   }
 
   /** The scenario's game state fields, sorted by name. */

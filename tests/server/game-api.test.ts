@@ -1,11 +1,14 @@
 // The game API end to end on the in-process server: the SDK sends a scenario's named game input, the server checks
 // it as untrusted input, and the room steps and records it; the scenario's game state reaches clients with snapshots,
-// only when it changed, and the SDK reports it as typed state with change events.
+// only when it changed, and the SDK reports it as typed state with change events; game messages are stamped with
+// the room's next tick, recorded, and handled by the scenario.
 import { afterEach, describe, expect, it } from 'vitest';
 import { connect, type GameStateChange, type NetClient } from '../../sdk/index.ts';
 import { ErrorCode } from '../../shared/protocol/index.ts';
+import type { GameStateValues } from '../../shared/sim/game-state.ts';
 import { NEUTRAL_INPUT } from '../../shared/sim/input.ts';
-import { pushBallScenario } from '../shared/sim/helpers/game-scenarios.ts';
+import type { Simulation } from '../../shared/sim/simulation.ts';
+import { pickTeamScenario, pushBallScenario } from '../shared/sim/helpers/game-scenarios.ts';
 import { MEMORY_URL, startHarness, type Harness } from './harness.ts';
 import { stripScenario } from './test-scenarios.ts';
 
@@ -14,6 +17,11 @@ afterEach(async () => {
   await h?.close();
   h = null;
 });
+
+/** The default room's game state (the room runs a real Simulation). */
+function roomState(harness: Harness): GameStateValues {
+  return (harness.room().sim as Simulation).gameState();
+}
 
 async function sdkClient(harness: Harness, name: string): Promise<NetClient> {
   const c = connect(MEMORY_URL, { name, transport: harness.network().transport, clock: harness.clock, reconnect: false });
@@ -120,5 +128,56 @@ describe('game state (server and SDK)', () => {
     expect(changes[1].state.phase).toBe('pushing');
     expect(changes.slice(2).every((ch) => ch.changed.join() === 'pushTicks')).toBe(true);
     c.close();
+  });
+});
+
+describe('game messages (server and SDK)', () => {
+  it('stamps an SDK message into the next tick\'s record, where the scenario handles it', async () => {
+    h = await startHarness({ scenarios: [pickTeamScenario] });
+    const c = await sdkClient(h, 'ann');
+    expect(c.welcome!.scenario.game?.messages?.map((k) => k.name)).toEqual(['pickTeam', 'ready']);
+    c.sendMessage('pickTeam', { team: 1 });
+    await h.settle(() => c.gameState<{ lastPick: number }>().lastPick === c.playerId! * 10 + 1);
+    const stamped = h.history().records.filter((r) => r.messages !== undefined);
+    expect(stamped.map((r) => r.messages)).toEqual([[{ playerId: c.playerId, name: 'pickTeam', payload: [1] }]]);
+    expect(roomState(h)).toMatchObject({ lastPick: c.playerId! * 10 + 1 });
+    c.close();
+  });
+
+  it('throws in the SDK for an undeclared message, payload field or value', async () => {
+    h = await startHarness({ scenarios: [pickTeamScenario] });
+    const c = await sdkClient(h, 'ann');
+    expect(() => c.sendMessage('jump')).toThrow(/unknown message "jump" \(declared: pickTeam, ready\)/);
+    expect(() => c.sendMessage('pickTeam', { side: 1 })).toThrow(/no payload field "side" \(declared: team\)/);
+    expect(() => c.sendMessage('pickTeam', { team: 3 })).toThrow(/team must be in \[0, 1\], got 3/);
+    c.close();
+    expect(() => c.sendMessage('ready')).toThrow(/not connected/);
+  });
+
+  it('answers a hostile message with bad-message and records nothing for it', async () => {
+    h = await startHarness({ scenarios: [pickTeamScenario] });
+    const t = await h.join('raw');
+    t.send({ type: 'game', name: 'pickTeam', payload: [7] });
+    t.send({ type: 'game', name: 'nope', payload: [] });
+    t.send({ type: 'game', name: 'pickTeam', payload: [1, 1] });
+    await h.settle(() => t.ofType('error').length >= 3);
+    expect(t.ofType('error').map((e) => [e.code, e.message])).toEqual([
+      [ErrorCode.BadMessage, 'game: message pickTeam: team must be in [0, 1], got 7'],
+      [ErrorCode.BadMessage, 'game: unknown message "nope" (declared: pickTeam, ready)'],
+      [ErrorCode.BadMessage, 'game: message pickTeam needs 1 payload value(s) (team), got 2'],
+    ]);
+    h.ticks(5);
+    expect(h.history().records.some((r) => r.messages !== undefined)).toBe(false);
+    expect(t.closed).toBeNull();
+  });
+
+  it('refuses more than eight messages from one player in one tick', async () => {
+    h = await startHarness({ scenarios: [pickTeamScenario] });
+    const t = await h.join('raw');
+    for (let i = 0; i < 9; i++) t.send({ type: 'game', name: 'ready', payload: [] });
+    await h.settle(() => t.ofType('error').length >= 1 || roomState(h!).readies !== 0);
+    await h.settle(() => roomState(h!).readies !== 0);
+    expect(t.ofType('error').map((e) => e.message)).toEqual(['game: at most 8 game messages per tick']);
+    expect(roomState(h).readies).toBe(8);
   });
 });

@@ -12,6 +12,7 @@ const withGame = {
     game: {
       input: [{ name: 'kick', min: 0, max: 1 }, { name: 'power', min: -10, max: 10 }],
       state: [{ name: 'phase', kind: 'string' as const, maxLength: 12 }, { name: 'score', kind: 'number' as const, maxLength: 0 }],
+      messages: [{ name: 'pickTeam', fields: [{ name: 'team', min: 0, max: 3 }] }, { name: 'ready', fields: [] }],
     },
   },
 };
@@ -85,5 +86,29 @@ describe('game-schema-codec', () => {
     expect(decode([['a', 'string', 65]])).toMatch(/welcome\.scenario\.state\[0\] must be \[name, 'number', 0\] or \[name, 'string', maxLength\]/);
     expect(decode([['a', 'bool', 0]])).toMatch(/must be \[name, 'number', 0\]/);
     expect(decode([['a', 'number', 0]])).toBe('ok');
+  });
+
+  it('carries a game message and refuses a malformed one as bad-message', () => {
+    expect(decodeClientMessage(encodeClientMessage({ type: 'game', name: 'pickTeam', payload: [2] }))).toEqual({ ok: true, message: { type: 'game', name: 'pickTeam', payload: [2] }, clampedCommands: 0 });
+    const refuse = (frame: unknown[]): string => {
+      const r = decodeClientMessage(packValue(frame));
+      return r.ok ? 'ok' : `${r.code}: ${r.error}`;
+    };
+    expect(refuse([6, 'pick team', []])).toBe('bad-message: game.name must be an identifier of 1-32 characters, got "pick team"');
+    expect(refuse([6, 'pick', [0.5]])).toBe('bad-message: game.payload[0] must be an integer within ±1000000, got 0.5');
+    expect(refuse([6, 'pick', new Array(9).fill(0)])).toBe('bad-message: game.payload must be an array of at most 8 integers');
+    expect(refuse([6, 'pick'])).toBe('bad-message: game must have 2 field(s), got 1');
+  });
+
+  it('refuses a welcome whose message rows are malformed', () => {
+    const decode = (messages: unknown): string => {
+      const [op, map] = unpackFrame(encodeServerMessage(sampleWelcome)) as [number, { scenario: Record<string, unknown> }];
+      map.scenario.messages = messages;
+      const r = decodeServerMessage(packValue([op, map]));
+      return r.ok ? 'ok' : r.error;
+    };
+    expect(decode([['pick', [['b', 0, 1], ['a', 0, 1]]]])).toMatch(/welcome\.scenario\.messages\[0\] fields must be sorted/);
+    expect(decode([['pick', [['a', 2, 1]]]])).toMatch(/field 0 must be \[name, min, max\]/);
+    expect(decode([['pick', []]])).toBe('ok');
   });
 });

@@ -36,3 +36,21 @@ export const pushBallScenario: ScenarioDefinition = {
     };
   },
 };
+
+/** pushBallScenario plus game messages: `pickTeam {team: 0…1}` sets `lastPick` to playerId·10 + team; `ready` adds 1 to `readies`. */
+export const pickTeamScenario: ScenarioDefinition = {
+  ...pushBallScenario,
+  name: 'test-pick-team',
+  messages: { pickTeam: { payload: { team: { min: 0, max: 1 } } }, ready: {} },
+  state: { ...pushBallScenario.state, lastPick: { kind: 'number', initial: -1 }, readies: { kind: 'number' } },
+  build(ctx) {
+    const inner = pushBallScenario.build(ctx);
+    return {
+      ...inner,
+      onMessage(c, m) {
+        if (m.name === 'pickTeam') c.setState('lastPick', m.playerId * 10 + m.payload.team);
+        else c.setState('readies', (c.getState('readies') as number) + 1);
+      },
+    };
+  },
+};
