@@ -106,7 +106,7 @@ export const replayCommand: CommandSpec = {
     'Stops at the first hash mismatch, names the divergent tick and the first differing body (from the next recorded\n' +
     'checkpoint), and exits 1; a corrupt log also exits 1 after replaying everything before the damage. A truncated\n' +
     'log (crash while recording) replays its whole records and exits 0. Progress goes to stderr when it is a terminal.',
-  positionals: [{ name: 'FILE', description: 'input log (.tlog) to replay', required: true }],
+  positionals: [{ name: 'FILE', description: 'input log (.taoslog) to replay', required: true }],
   flags: [
     { name: 'to', kind: 'int', valueName: 'TICK', description: 'stop once TICK ticks are applied', min: 0 },
     { name: 'json', kind: 'boolean', description: 'print one JSON object on stdout' },

@@ -9,6 +9,7 @@ import { parseAllowedOrigins } from '../server/access/origin-policy.ts';
 import { JOIN_SECRET_ENV, MIN_JOIN_SECRET_LENGTH } from '../server/access/seat-tokens.ts';
 import type { ConnectionPolicyOptions } from '../server/connection-policy.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
+import { LogFormat } from '../server/pretty-log.ts';
 import { runServe, type ServeOptions } from './serve.ts';
 import type { ParsedArgs } from './args.ts';
 import { UsageError, type CliIo, type CommandSpec } from './command.ts';
@@ -64,6 +65,14 @@ function accessOptions(args: ParsedArgs): Pick<ServeOptions, 'allowedOrigins' | 
   };
 }
 
+/** The port from the PORT environment variable (what hosting platforms set), else 8080; a bad value is a usage error. */
+export function portFromEnv(env: string | undefined): number {
+  if (env === undefined || env === '') return 8080;
+  const port = Number(env);
+  if (!/^\d+$/.test(env) || port > 65535) throw new UsageError(`PORT must be a TCP port (0-65535), got "${env}"`);
+  return port;
+}
+
 async function run(args: ParsedArgs, io: CliIo): Promise<number> {
   const scenario = args.string('scenario') ?? DEFAULT_SCENARIO;
   const def = scenarioNamed(scenario);
@@ -73,6 +82,8 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
   if (record === '') throw new UsageError('--record must name a directory');
   const logLevel = args.string('log-level');
   if (logLevel !== undefined && !LOG_LEVELS.includes(logLevel)) throw new UsageError(`--log-level must be one of ${LOG_LEVELS.join(', ')}, got "${logLevel}"`);
+  const logFormat = args.string('log-format');
+  if (logFormat !== undefined && logFormat !== LogFormat.Json && logFormat !== LogFormat.Pretty) throw new UsageError(`--log-format must be json or pretty, got "${logFormat}"`);
   const host = args.string('host') ?? '127.0.0.1';
   if (host === '') throw new UsageError('--host must not be empty');
   const connectionPolicy: Partial<ConnectionPolicyOptions> = {};
@@ -80,7 +91,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
   if (args.has('max-pending-per-address')) connectionPolicy.maxPendingPerAddress = args.number('max-pending-per-address');
   return runServe(
     {
-      port: args.number('port', 8080),
+      port: args.has('port') ? args.number('port') : portFromEnv(process.env.PORT),
       host,
       scenario,
       params,
@@ -96,6 +107,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
       tls: readTls(args.string('tls-cert'), args.string('tls-key')),
       clientDir: args.string('client-dir'),
       logLevel,
+      logFormat,
       ...accessOptions(args),
     },
     io,
@@ -109,13 +121,13 @@ export const serveCommand: CommandSpec = {
   details:
     'Serves the browser client at /, WebSocket play on the same port, /healthz, /metrics (Prometheus) and\n' +
     '/api/rooms. The default room runs --scenario; a client may open another room by naming a scenario as its room.\n' +
-    'With --record DIR every room writes its input log there (replay it with `replay FILE`). Logs are JSON lines on\n' +
-    'stderr. SIGINT/SIGTERM: clients are told why, recordings are closed, then the process exits.\n' +
+    'With --record DIR every room writes its input log there (replay it with `replay FILE`). Logs go to stderr:\n' +
+    'readable lines on a terminal, JSON lines when piped (or with --log-format json). SIGINT/SIGTERM: clients are told why, recordings are closed, then the process exits.\n' +
     `Access control (docs/server.md): pages from other origins are refused; ${ADMIN_TOKEN_ENV} and ${JOIN_SECRET_ENV} may\n` +
     'replace --admin-token and --join-secret (the flag wins).',
   positionals: [],
   flags: [
-    { name: 'port', kind: 'int', valueName: 'PORT', description: 'TCP port (0: any free port); default 8080', min: 0, max: 65535 },
+    { name: 'port', kind: 'int', valueName: 'PORT', description: 'TCP port (0: any free port); default the PORT environment variable, else 8080', min: 0, max: 65535 },
     { name: 'host', kind: 'string', valueName: 'HOST', description: 'interface to bind; default 127.0.0.1' },
     { name: 'scenario', kind: 'string', valueName: 'NAME', description: `scenario of the default room; default ${DEFAULT_SCENARIO}` },
     { name: 'param', kind: 'pair', valueName: 'k=v', description: 'scenario parameter (repeatable)' },
@@ -133,6 +145,7 @@ export const serveCommand: CommandSpec = {
     { name: 'trust-proxy', kind: 'boolean', description: 'take client addresses from X-Forwarded-For/-Proto (only behind a reverse proxy)' },
     { name: 'client-dir', kind: 'string', valueName: 'DIR', description: 'built browser client to serve; default dist/client' },
     { name: 'log-level', kind: 'string', valueName: 'LEVEL', description: 'log level (trace, debug, info, warn, error, silent); default info' },
+    { name: 'log-format', kind: 'string', valueName: 'FORMAT', description: 'log lines on stderr: pretty (time, level, message, fields) or json; default pretty on a terminal, else json' },
     { name: 'allowed-origins', kind: 'string', valueName: 'LIST', description: 'comma-separated origins whose pages may connect or post (plus self, loopback, *); default self,loopback' },
     { name: 'admin-token', kind: 'string', valueName: 'TOKEN', description: `bearer token required for POST/DELETE /api/... and /metrics (or ${ADMIN_TOKEN_ENV}); default none` },
     { name: 'join-secret', kind: 'string', valueName: 'SECRET', description: `HMAC key of seat tokens, shared by servers that accept each other's seats (or ${JOIN_SECRET_ENV}); default random` },
