@@ -8,6 +8,7 @@ import { ADMIN_TOKEN_ENV, checkAdminTokenText } from '../server/access/admin-aut
 import { parseAllowedOrigins } from '../server/access/origin-policy.ts';
 import { JOIN_SECRET_ENV, MIN_JOIN_SECRET_LENGTH } from '../server/access/seat-tokens.ts';
 import type { ConnectionPolicyOptions } from '../server/connection-policy.ts';
+import { DEFAULT_CHECKPOINT_EVERY_SECONDS, DEFAULT_DURABILITY, DEFAULT_DURABILITY_INTERVAL_MS, DURABILITY_MODES, type DurabilityMode } from '../server/recorder.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import { runServe, type ServeOptions } from './serve.ts';
 import type { ParsedArgs } from './args.ts';
@@ -64,6 +65,17 @@ function accessOptions(args: ParsedArgs): Pick<ServeOptions, 'allowedOrigins' | 
   };
 }
 
+/** --durability, --durability-interval-ms and --checkpoint-every, checked. */
+function recordingOptions(args: ParsedArgs): Pick<ServeOptions, 'durability' | 'checkpointEverySeconds'> {
+  const mode = args.string('durability') ?? DEFAULT_DURABILITY;
+  if (!(DURABILITY_MODES as readonly string[]).includes(mode)) throw new UsageError(`--durability must be one of ${DURABILITY_MODES.join(', ')}, got "${mode}"`);
+  if (args.has('durability-interval-ms') && mode !== 'interval') throw new UsageError('--durability-interval-ms goes with --durability interval');
+  return {
+    durability: { mode: mode as DurabilityMode, intervalMs: args.number('durability-interval-ms', DEFAULT_DURABILITY_INTERVAL_MS) },
+    checkpointEverySeconds: args.number('checkpoint-every', DEFAULT_CHECKPOINT_EVERY_SECONDS),
+  };
+}
+
 async function run(args: ParsedArgs, io: CliIo): Promise<number> {
   const scenario = args.string('scenario') ?? DEFAULT_SCENARIO;
   const def = scenarioNamed(scenario);
@@ -96,6 +108,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
       tls: readTls(args.string('tls-cert'), args.string('tls-key')),
       clientDir: args.string('client-dir'),
       logLevel,
+      ...recordingOptions(args),
       ...accessOptions(args),
     },
     io,
@@ -109,7 +122,11 @@ export const serveCommand: CommandSpec = {
   details:
     'Serves the browser client at /, WebSocket play on the same port, /healthz, /metrics (Prometheus) and\n' +
     '/api/rooms. The default room runs --scenario; a client may open another room by naming a scenario as its room.\n' +
-    'With --record DIR every room writes its input log there (replay it with `replay FILE`). Logs are JSON lines on\n' +
+    'With --record DIR every room writes its input log there (replay it with `replay FILE`), with a checkpoint every\n' +
+    `--checkpoint-every seconds. --durability (default ${DEFAULT_DURABILITY}): "tick" writes and fdatasyncs each tick's record (group\n` +
+    'commit) before its snapshot, events or input acks leave, so a crash loses nothing any client saw, for a fraction\n' +
+    'of a millisecond per tick (docs/server.md); "interval" syncs every --durability-interval-ms and holds nothing\n' +
+    'back (a crash loses at most that much); "off" hands records to the OS every second. Logs are JSON lines on\n' +
     'stderr. SIGINT/SIGTERM: clients are told why, recordings are closed, then the process exits.\n' +
     `Access control (docs/server.md): pages from other origins are refused; ${ADMIN_TOKEN_ENV} and ${JOIN_SECRET_ENV} may\n` +
     'replace --admin-token and --join-secret (the flag wins).',
@@ -122,6 +139,9 @@ export const serveCommand: CommandSpec = {
     { name: 'seed', kind: 'string', valueName: 'SEED', description: 'simulation seed of every room; default 1' },
     { name: 'snapshot-rate', kind: 'int', valueName: 'HZ', description: `snapshots per second per client (1-${TICK_RATE_HZ}); default 30`, min: 1, max: TICK_RATE_HZ },
     { name: 'record', kind: 'string', valueName: 'DIR', description: "write every room's input log into DIR" },
+    { name: 'durability', kind: 'string', valueName: 'MODE', description: `when recorded ticks reach the disk: tick, interval or off; default ${DEFAULT_DURABILITY}` },
+    { name: 'durability-interval-ms', kind: 'int', valueName: 'MS', description: `sync period of --durability interval; default ${DEFAULT_DURABILITY_INTERVAL_MS}`, min: 1, max: 60_000 },
+    { name: 'checkpoint-every', kind: 'int', valueName: 'SECONDS', description: `a checkpoint in recordings every SECONDS of play (0: none); default ${DEFAULT_CHECKPOINT_EVERY_SECONDS}`, min: 0, max: 86_400 },
     { name: 'max-clients', kind: 'int', valueName: 'N', description: 'most clients per room; default 32', min: 1, max: 1000 },
     { name: 'max-rooms', kind: 'int', valueName: 'N', description: 'most rooms at once (each is a Jolt world in the 128 MB heap); default 6', min: 1, max: 32 },
     { name: 'max-connections', kind: 'int', valueName: 'N', description: 'most WebSocket connections in all; default 256', min: 1, max: 100_000 },

@@ -20,4 +20,13 @@ describe('serve command', () => {
     expect((await cli('serve', '--hello-timeout-ms', '5s')).stderr).toMatch(/--hello-timeout-ms must be an integer/);
     expect((await cli('serve', '--trust-proxy=yes')).stderr).toMatch(/--trust-proxy takes no value/);
   });
+
+  it('checks the durability and checkpoint flags', async () => {
+    const bad = await cli('serve', '--durability', 'sometimes');
+    expect(bad.code).toBe(2);
+    expect(bad.stderr).toMatch(/--durability must be one of tick, interval, off, got "sometimes"/);
+    expect((await cli('serve', '--durability-interval-ms', '100')).stderr).toMatch(/--durability-interval-ms goes with --durability interval/);
+    expect((await cli('serve', '--checkpoint-every', '-1')).code).toBe(2);
+    expect((await cli('serve', '--help')).stdout).toMatch(/--durability MODE/);
+  });
 });
