@@ -8,6 +8,7 @@ import { ADMIN_TOKEN_ENV, checkAdminTokenText } from '../server/access/admin-aut
 import { parseAllowedOrigins } from '../server/access/origin-policy.ts';
 import { JOIN_SECRET_ENV, MIN_JOIN_SECRET_LENGTH } from '../server/access/seat-tokens.ts';
 import type { ConnectionPolicyOptions } from '../server/connection-policy.ts';
+import { DEFAULT_CHECKPOINT_EVERY_SECONDS, DEFAULT_DURABILITY, DEFAULT_DURABILITY_INTERVAL_MS, DURABILITY_MODES, type DurabilityMode } from '../server/recorder.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import { LogFormat } from '../server/pretty-log.ts';
 import { runServe, type ServeOptions } from './serve.ts';
@@ -73,6 +74,17 @@ export function portFromEnv(env: string | undefined): number {
   return port;
 }
 
+/** --durability, --durability-interval-ms and --checkpoint-every, checked. */
+function recordingOptions(args: ParsedArgs): Pick<ServeOptions, 'durability' | 'checkpointEverySeconds'> {
+  const mode = args.string('durability') ?? DEFAULT_DURABILITY;
+  if (!(DURABILITY_MODES as readonly string[]).includes(mode)) throw new UsageError(`--durability must be one of ${DURABILITY_MODES.join(', ')}, got "${mode}"`);
+  if (args.has('durability-interval-ms') && mode !== 'interval') throw new UsageError('--durability-interval-ms goes with --durability interval');
+  return {
+    durability: { mode: mode as DurabilityMode, intervalMs: args.number('durability-interval-ms', DEFAULT_DURABILITY_INTERVAL_MS) },
+    checkpointEverySeconds: args.number('checkpoint-every', DEFAULT_CHECKPOINT_EVERY_SECONDS),
+  };
+}
+
 async function run(args: ParsedArgs, io: CliIo): Promise<number> {
   const scenario = args.string('scenario') ?? DEFAULT_SCENARIO;
   const def = scenarioNamed(scenario);
@@ -108,6 +120,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
       clientDir: args.string('client-dir'),
       logLevel,
       logFormat,
+      ...recordingOptions(args),
       ...accessOptions(args),
     },
     io,
@@ -121,8 +134,13 @@ export const serveCommand: CommandSpec = {
   details:
     'Serves the browser client at /, WebSocket play on the same port, /healthz, /metrics (Prometheus) and\n' +
     '/api/rooms. The default room runs --scenario; a client may open another room by naming a scenario as its room.\n' +
-    'With --record DIR every room writes its input log there (replay it with `replay FILE`). Logs go to stderr:\n' +
-    'readable lines on a terminal, JSON lines when piped (or with --log-format json). SIGINT/SIGTERM: clients are told why, recordings are closed, then the process exits.\n' +
+    'With --record DIR every room writes its input log there (replay it with `replay FILE`), with a checkpoint every\n' +
+    `--checkpoint-every seconds. --durability (default ${DEFAULT_DURABILITY}): "tick" writes and fdatasyncs each tick's record (group\n` +
+    'commit) before its snapshot, events or input acks leave, so a crash loses nothing any client saw, for a fraction\n' +
+    'of a millisecond per tick (docs/server.md); "interval" syncs every --durability-interval-ms and holds nothing\n' +
+    'back (a crash loses at most that much); "off" hands records to the OS every second. Logs go to stderr:\n' +
+    'readable lines on a terminal, JSON lines when piped (or with --log-format json). SIGINT/SIGTERM: clients are\n' +
+    'told why, recordings are closed, then the process exits.\n' +
     `Access control (docs/server.md): pages from other origins are refused; ${ADMIN_TOKEN_ENV} and ${JOIN_SECRET_ENV} may\n` +
     'replace --admin-token and --join-secret (the flag wins).',
   positionals: [],
@@ -134,6 +152,9 @@ export const serveCommand: CommandSpec = {
     { name: 'seed', kind: 'string', valueName: 'SEED', description: 'simulation seed of every room; default 1' },
     { name: 'snapshot-rate', kind: 'int', valueName: 'HZ', description: `snapshots per second per client (1-${TICK_RATE_HZ}); default 30`, min: 1, max: TICK_RATE_HZ },
     { name: 'record', kind: 'string', valueName: 'DIR', description: "write every room's input log into DIR" },
+    { name: 'durability', kind: 'string', valueName: 'MODE', description: `when recorded ticks reach the disk: tick, interval or off; default ${DEFAULT_DURABILITY}` },
+    { name: 'durability-interval-ms', kind: 'int', valueName: 'MS', description: `sync period of --durability interval; default ${DEFAULT_DURABILITY_INTERVAL_MS}`, min: 1, max: 60_000 },
+    { name: 'checkpoint-every', kind: 'int', valueName: 'SECONDS', description: `a checkpoint in recordings every SECONDS of play (0: none); default ${DEFAULT_CHECKPOINT_EVERY_SECONDS}`, min: 0, max: 86_400 },
     { name: 'max-clients', kind: 'int', valueName: 'N', description: 'most clients per room; default 32', min: 1, max: 1000 },
     { name: 'max-rooms', kind: 'int', valueName: 'N', description: 'most rooms at once (each is a Jolt world in the 128 MB heap); default 6', min: 1, max: 32 },
     { name: 'max-connections', kind: 'int', valueName: 'N', description: 'most WebSocket connections in all; default 256', min: 1, max: 100_000 },

@@ -31,6 +31,8 @@ export interface RoomSimulation {
   staticDescriptors(): BodyDescriptor[];
   bodyDescriptor(id: number): BodyDescriptor | undefined | null;
   destroy(): void;
+  /** The simulation's byte checkpoint (for checkpoints in recordings), when it has one. */
+  saveCheckpointBytes?(): Uint8Array;
   /** The world's WASM heap (for /metrics), when the simulation has one. */
   readonly world?: { freeHeapBytes(): number; totalHeapBytes(): number };
 }
@@ -43,6 +45,11 @@ export interface RoomRecorder {
   afterStep(tick: number, hash: () => string): void;
   /** Writes the end record (none when the hash is null: the room failed), flushes and closes. */
   close(finalTick: number, finalHash: string | null): Promise<void>;
+  /**
+   * Calls `send` (the tick's events and frame) once the log holds the tick durably, in tick order; absent: at once.
+   * This is how nothing a client sees can be missing from the log after a crash (--durability tick).
+   */
+  release?(tick: number, send: () => void): void;
 }
 
 /** The world after one snapshot tick, shared by every member's encoder (copies: valid after the tick). */
@@ -376,36 +383,43 @@ export class Room {
     }
     m.ticks.inc();
     if (this.players.size === 0 && (this.opts.pauseWhenEmpty ?? true) && this.pendingLeaves.length === 0) this.tickClock.stop();
-    this.deliver(tick, events);
+    const send = this.deliver(tick, events);
+    if (this.opts.recorder?.release) this.opts.recorder.release(tick, send);
+    else send();
     for (const fn of this.tickListeners) fn(record, events);
     const seconds = (performance.now() - started) / 1000;
     m.tickDuration.observe(seconds);
     if (seconds > 1 / TICK_RATE_HZ) m.tickOverruns.inc();
   }
 
-  private deliver(tick: number, events: readonly SimEvent[]): void {
+  /** Does the tick's bookkeeping now and returns what sends its events and frame (possibly later, see release). */
+  private deliver(tick: number, events: readonly SimEvent[]): () => void {
     for (const e of events) if (e.type === 'bodyRemoved') this.sceneStatics.delete(e.bodyId); // its id may be reused
-    const members = [...this.players.values()].filter((p): p is Player & { member: RoomMember } => p.member !== null);
-    if (events.length > 0) for (const p of members) this.safely(p, () => p.member.deliverEvents(tick, events));
+    let frame: WorldFrame | null = null;
     this.snapshotAccumulator += this.opts.snapshotRateHz;
-    if (this.snapshotAccumulator + 1e-9 < TICK_RATE_HZ) {
-      return;
+    if (this.snapshotAccumulator + 1e-9 >= TICK_RATE_HZ) {
+      this.snapshotAccumulator -= TICK_RATE_HZ;
+      const bodies = this.sim.readBodyStates();
+      this.lastBodyCount = bodies.count;
+      if (this.heldCount < this.players.size) {
+        frame = {
+          tick,
+          bodies: {
+            count: bodies.count,
+            ids: bodies.ids.slice(0, bodies.count),
+            states: bodies.states.slice(0, bodies.count * BODY_STATE_STRIDE),
+            flags: bodies.flags.slice(0, bodies.count),
+          },
+          characters: this.sim.characters(),
+        };
+      }
     }
-    this.snapshotAccumulator -= TICK_RATE_HZ;
-    const bodies = this.sim.readBodyStates();
-    this.lastBodyCount = bodies.count;
-    if (members.length === 0) return;
-    const frame: WorldFrame = {
-      tick,
-      bodies: {
-        count: bodies.count,
-        ids: bodies.ids.slice(0, bodies.count),
-        states: bodies.states.slice(0, bodies.count * BODY_STATE_STRIDE),
-        flags: bodies.flags.slice(0, bodies.count),
-      },
-      characters: this.sim.characters(),
+    return () => {
+      if (this.closed) return;
+      const members = [...this.players.values()].filter((p): p is Player & { member: RoomMember } => p.member !== null);
+      if (events.length > 0) for (const p of members) this.safely(p, () => p.member.deliverEvents(tick, events));
+      if (frame) for (const p of members) this.safely(p, () => p.member.deliverFrame(frame));
     };
-    for (const p of members) this.safely(p, () => p.member.deliverFrame(frame));
   }
 
   // A member that throws while taking a delivery is removed; the room and the other members carry on.

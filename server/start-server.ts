@@ -20,6 +20,7 @@ import { createTcpGate, Tarpit, type TarpitOptions } from './tcp-gate.ts';
 import { createLogger, flushLogger, type Logger } from './logger.ts';
 import { createMetrics, type ServerMetrics } from './metrics.ts';
 import { createRoomFactory, type ScenarioSource } from './room-factory.ts';
+import type { DurabilityOptions } from './recorder.ts';
 import { createStaticHandler } from './static-files.ts';
 import { attachWsGateway } from './ws-gateway.ts';
 
@@ -43,6 +44,10 @@ export interface StartServerOptions extends AccessOptions {
   recordDir?: string | null;
   /** A state hash record in recordings every N ticks (default 60; 1 checks every tick on replay). */
   recordHashEveryTicks?: number;
+  /** When recorded records reach the disk (--durability). Default tick. */
+  durability?: DurabilityOptions;
+  /** A checkpoint in recordings every N seconds of play (0: none). Default 10. */
+  checkpointEverySeconds?: number;
   /** Most clients per room. Default 32. */
   maxClients?: number;
   maxConnections?: number;
@@ -124,7 +129,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   const tarpit = new Tarpit(clock, opts.tarpit);
 
   const game = await GameServer.create({
-    factory: createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null, hashEveryTicks: opts.recordHashEveryTicks }),
+    factory: createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null, hashEveryTicks: opts.recordHashEveryTicks, durability: opts.durability, checkpointEverySeconds: opts.checkpointEverySeconds }),
     defaultScenario: scenarioName,
     defaultParams: opts.params,
     seed: opts.seed,
