@@ -14,6 +14,8 @@ export interface RoomRecorderOptions {
   dir: string;
   roomId: string;
   scenario: string;
+  /** Content hash of the scenario's module ('' for a built-in). */
+  scenarioHash?: string;
   params: Readonly<Record<string, number>>;
   seed: number | string;
   /** The simulation's tick counter when recording starts (must be 0: a log starts at the first tick). */
@@ -47,6 +49,7 @@ export async function createRoomRecorder(opts: RoomRecorderOptions): Promise<Roo
   const header = {
     joltVersion: installedJoltVersion(),
     scenario: opts.scenario,
+    scenarioHash: opts.scenarioHash ?? '',
     params: { ...opts.params },
     seed: opts.seed,
     tickRateHz: TICK_RATE_HZ,

@@ -5,6 +5,7 @@ import { Simulation } from '../shared/sim/simulation.ts';
 import type { ScenarioDefinition } from '../shared/sim/scenario.ts';
 import type { Logger } from './logger.ts';
 import { createRoomRecorder } from './recorder.ts';
+import { scenarioModuleHash } from './scenario-module.ts';
 import type { RoomFactory, RoomSimulationBuild } from './room-manager.ts';
 import type { RoomRecorder } from './room.ts';
 
@@ -73,10 +74,12 @@ export function createRoomFactory(opts: RoomFactoryOptions): RoomFactory & { liv
     },
     async createRecorder(room): Promise<RoomRecorder | null> {
       if (!opts.recordDir) return null;
+      const def = opts.scenarios.get(room.scenario);
       return createRoomRecorder({
         dir: opts.recordDir,
         roomId: room.id,
         scenario: room.scenario,
+        scenarioHash: def ? await scenarioModuleHash(def) : '',
         params: room.params,
         seed: room.seed,
         startTick: room.sim.tick,
