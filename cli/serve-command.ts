@@ -14,7 +14,9 @@ import { LogFormat } from '../server/pretty-log.ts';
 import { runServe, type ServeOptions } from './serve.ts';
 import type { ParsedArgs } from './args.ts';
 import { UsageError, type CliIo, type CommandSpec } from './command.ts';
-import { checkParams, parseSeed, scenarioNamed } from './scenario-setup.ts';
+import { scenarioSource } from '../server/create-server.ts';
+import { isScenarioPath } from '../server/scenario-module.ts';
+import { checkParams, parseSeed, scenarioFromArg } from './scenario-setup.ts';
 
 const LOG_LEVELS = ['trace', 'debug', 'info', 'warn', 'error', 'fatal', 'silent'];
 
@@ -87,7 +89,9 @@ function recordingOptions(args: ParsedArgs): Pick<ServeOptions, 'durability' | '
 
 async function run(args: ParsedArgs, io: CliIo): Promise<number> {
   const scenario = args.string('scenario') ?? DEFAULT_SCENARIO;
-  const def = scenarioNamed(scenario);
+  const def = await scenarioFromArg(scenario);
+  // A game's own module: its scenario is the only one the server offers.
+  const own = isScenarioPath(scenario) ? { scenarios: scenarioSource([def]) } : {};
   const params = args.pairs('param');
   checkParams(def, params);
   const record = args.string('record');
@@ -105,7 +109,8 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
     {
       port: args.has('port') ? args.number('port') : portFromEnv(process.env.PORT),
       host,
-      scenario,
+      scenario: def.name,
+      ...own,
       params,
       seed: parseSeed(args.string('seed')),
       snapshotRateHz: args.number('snapshot-rate', 30),
@@ -147,7 +152,7 @@ export const serveCommand: CommandSpec = {
   flags: [
     { name: 'port', kind: 'int', valueName: 'PORT', description: 'TCP port (0: any free port); default the PORT environment variable, else 8080', min: 0, max: 65535 },
     { name: 'host', kind: 'string', valueName: 'HOST', description: 'interface to bind; default 127.0.0.1' },
-    { name: 'scenario', kind: 'string', valueName: 'NAME', description: `scenario of the default room; default ${DEFAULT_SCENARIO}` },
+    { name: 'scenario', kind: 'string', valueName: 'NAME|FILE', description: `scenario of the default room: a built-in name or a module file (then the only one offered); default ${DEFAULT_SCENARIO}` },
     { name: 'param', kind: 'pair', valueName: 'k=v', description: 'scenario parameter (repeatable)' },
     { name: 'seed', kind: 'string', valueName: 'SEED', description: 'simulation seed of every room; default 1' },
     { name: 'snapshot-rate', kind: 'int', valueName: 'HZ', description: `snapshots per second per client (1-${TICK_RATE_HZ}); default 30`, min: 1, max: TICK_RATE_HZ },

@@ -46,6 +46,8 @@ export interface RoomRecorderOptions {
   dir: string;
   roomId: string;
   scenario: string;
+  /** Content hash of the scenario's module ('' for a built-in). */
+  scenarioHash?: string;
   params: Readonly<Record<string, number>>;
   seed: number | string;
   /** The simulation's tick counter when recording starts (must be 0: a log starts at the first tick). */
@@ -89,6 +91,7 @@ async function openWriter(opts: RoomRecorderOptions, mode: DurabilityMode): Prom
   const header: LogHeaderInit = {
     joltVersion: installedJoltVersion(),
     scenario: opts.scenario,
+    scenarioHash: opts.scenarioHash ?? '',
     params: { ...opts.params },
     seed: opts.seed,
     tickRateHz: TICK_RATE_HZ,

@@ -6,6 +6,7 @@ import type { ScenarioDefinition } from '../shared/sim/scenario.ts';
 import type { Logger } from './logger.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import { createRoomRecorder, DEFAULT_CHECKPOINT_EVERY_SECONDS, type DurabilityOptions } from './recorder.ts';
+import { scenarioModuleHash } from './scenario-module.ts';
 import type { RoomFactory, RoomSimulationBuild } from './room-manager.ts';
 import type { RoomRecorder } from './room.ts';
 
@@ -79,6 +80,7 @@ export function createRoomFactory(opts: RoomFactoryOptions): RoomFactory & { liv
     async createRecorder(room): Promise<RoomRecorder | null> {
       if (!opts.recordDir) return null;
       const sim = room.sim;
+      const def = opts.scenarios.get(room.scenario);
       return createRoomRecorder({
         durability: opts.durability,
         checkpointEveryTicks: Math.round((opts.checkpointEverySeconds ?? DEFAULT_CHECKPOINT_EVERY_SECONDS) * TICK_RATE_HZ),
@@ -86,6 +88,7 @@ export function createRoomFactory(opts: RoomFactoryOptions): RoomFactory & { liv
         dir: opts.recordDir,
         roomId: room.id,
         scenario: room.scenario,
+        scenarioHash: def ? await scenarioModuleHash(def) : '',
         params: room.params,
         seed: room.seed,
         startTick: room.sim.tick,
