@@ -7,7 +7,9 @@ import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
+import type { HostedRoom, MemberSink, RoomEntry, Seat } from './hosted-room.ts';
 import { InputBuffer, OfferResult } from './input-buffer.ts';
+import { enterRoom } from './local-seat.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
 import { SnapshotFanOut } from './snapshot-fan-out.ts';
@@ -138,7 +140,7 @@ export function heldInput(last: InputCommand): InputCommand {
 }
 
 /** A running room; build it with `new Room(sim, opts)` and call start(). */
-export class Room {
+export class Room implements HostedRoom {
   readonly id: string;
   readonly scenarioName: string;
   readonly description: string;
@@ -269,6 +271,15 @@ export class Room {
       this.tickClock.start();
     }
     return { playerId, joinTick, firstInputTick };
+  }
+
+  /** Seats a member (a new player, or a held one taken back) with its welcome; rejects with a RoomError when refused. */
+  enter(sink: MemberSink, entry: RoomEntry): Promise<Seat> {
+    try {
+      return Promise.resolve(enterRoom(this, sink, entry, this.opts.metrics));
+    } catch (error) {
+      return Promise.reject(error instanceof Error ? error : new Error(String(error)));
+    }
   }
 
   /** Removes a player; the leave goes into the next tick's record (a join not yet applied is simply dropped). */
