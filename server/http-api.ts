@@ -8,7 +8,7 @@ import type { GameServer } from './game-server.ts';
 import { HttpError, HttpErrorCode } from './http-errors.ts';
 import type { CreateRoomRequest, HttpApi } from './http-server.ts';
 import type { Logger } from './logger.ts';
-import { renderMetrics, type ServerMetrics } from './metrics.ts';
+import type { ServerMetrics } from './metrics.ts';
 import type { HostedRoom } from './hosted-room.ts';
 import { RoomError, type RoomInfo } from './room.ts';
 import type { ScenarioSource } from './room-factory.ts';
@@ -94,7 +94,7 @@ export function createHttpApi(opts: HttpApiOptions): HttpApi {
       const seat = opts.access.seats.issue(roomId, req.ttlSeconds === undefined ? undefined : req.ttlSeconds * 1000);
       return { token: seat.token, roomId: seat.roomId, seatId: seat.seatId, expiresAt: new Date(seat.expiresAtMs).toISOString() };
     },
-    metrics: () => renderMetrics(opts.metrics),
+    metrics: () => game.renderMetrics(),
     authorize: opts.access.authorize,
     staticFiles: (req, res) => opts.staticFiles(req, res),
   };

@@ -6,6 +6,7 @@ import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { HostedRoom } from './hosted-room.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
+import { openRoom } from './open-room.ts';
 import { Room, RoomError, type RoomInfo, type RoomRecorder, type RoomSimulation } from './room.ts';
 
 /** The id of the room that always exists. */
@@ -206,39 +207,8 @@ export class RoomManager {
     return room;
   }
 
-  private async buildHere(id: string, scenario: string, params: Readonly<Record<string, number>>, seed: number | string): Promise<Room> {
-    let built: RoomSimulationBuild;
-    try {
-      built = await this.opts.factory.createSimulation(scenario, params, seed);
-    } catch (error) {
-      throw new RoomError(ErrorCode.BadMessage, `cannot create room ${id}: ${error instanceof Error ? error.message : String(error)}`);
-    }
-    let recorder: RoomRecorder | null = null;
-    try {
-      recorder = (await this.opts.factory.createRecorder?.({ id, scenario, params: built.params, seed, sim: built.sim })) ?? null;
-    } catch (error) {
-      built.sim.destroy();
-      throw new RoomError(ErrorCode.Internal, `cannot start the recording of room ${id}: ${error instanceof Error ? error.message : String(error)}`);
-    }
-    const room = new Room(built.sim, {
-      id,
-      scenarioName: scenario,
-      description: built.description,
-      bounds: built.bounds,
-      params: built.params,
-      seed,
-      clock: this.opts.clock,
-      metrics: this.opts.metrics,
-      logger: this.opts.logger,
-      snapshotRateHz: this.opts.snapshotRateHz,
-      maxClients: this.opts.maxClientsPerRoom,
-      maxBodies: built.maxBodies,
-      maxCatchUpTicks: this.opts.maxCatchUpTicks,
-      maxInputLeadTicks: this.opts.maxInputLeadTicks,
-      pauseWhenEmpty: this.opts.pauseWhenEmpty,
-      recorder,
-    });
-    return room;
+  private buildHere(id: string, scenario: string, params: Readonly<Record<string, number>>, seed: number | string): Promise<Room> {
+    return openRoom({ id, scenario, params, seed }, this.opts);
   }
 
   private armEmptyTimer(room: HostedRoom): void {

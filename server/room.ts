@@ -157,6 +157,7 @@ export class Room implements HostedRoom {
   private nextPlayerId = 1;
   private closedReason: string | null = null;
   private snapshotAccumulator = 0;
+  private busySecondsTotal = 0;
   private lastBodyCount = 0;
   // Static bodies the scene was built with: drawn from the welcome, never in snapshots. Statics spawned later
   // (streamed terrain) travel in snapshots instead, so clients already in the room learn about them.
@@ -216,9 +217,19 @@ export class Room implements HostedRoom {
     return n;
   }
 
+  /** Ids of the players in the room (connected or held). */
+  playerIds(): number[] {
+    return [...this.players.keys()];
+  }
+
   /** Whether a player is in the room (connected or held). */
   hasPlayer(playerId: number): boolean {
     return this.players.has(playerId);
+  }
+
+  /** Wall seconds this room's ticks have taken since it opened (its load on its thread). */
+  get busySeconds(): number {
+    return this.busySecondsTotal;
   }
 
   /** Whether the room has closed. */
@@ -390,6 +401,7 @@ export class Room implements HostedRoom {
     this.deliver(tick, events);
     for (const fn of this.tickListeners) fn(record, events);
     const seconds = (performance.now() - started) / 1000;
+    this.busySecondsTotal += seconds;
     m.tickDuration.observe(seconds);
     if (seconds > 1 / TICK_RATE_HZ) m.tickOverruns.inc();
   }
