@@ -3,6 +3,7 @@
 // (HTTP(S) + WebSocket on one port) until SIGINT/SIGTERM. Secrets may come from the environment (TAOS_ADMIN_TOKEN,
 // TAOS_JOIN_SECRET) so they stay out of `ps` output.
 import { readFileSync } from 'node:fs';
+import { availableParallelism } from 'node:os';
 import { DEFAULT_SCENARIO } from '../scenarios/index.ts';
 import { ADMIN_TOKEN_ENV, checkAdminTokenText } from '../server/access/admin-auth.ts';
 import { parseAllowedOrigins } from '../server/access/origin-policy.ts';
@@ -89,6 +90,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
       recordDir: record ?? null,
       maxClients: args.number('max-clients', 32),
       maxRooms: args.number('max-rooms'),
+      roomWorkers: args.number('room-workers', availableParallelism()),
       maxConnections: args.number('max-connections'),
       connectionPolicy,
       limits: args.has('hello-timeout-ms') ? { helloTimeoutMs: args.number('hello-timeout-ms') } : undefined,
@@ -124,6 +126,7 @@ export const serveCommand: CommandSpec = {
     { name: 'record', kind: 'string', valueName: 'DIR', description: "write every room's input log into DIR" },
     { name: 'max-clients', kind: 'int', valueName: 'N', description: 'most clients per room; default 32', min: 1, max: 1000 },
     { name: 'max-rooms', kind: 'int', valueName: 'N', description: 'most rooms at once (each is a Jolt world in the 128 MB heap); default 6', min: 1, max: 32 },
+    { name: 'room-workers', kind: 'int', valueName: 'N', description: "worker threads that run the rooms (0: every room on the main thread); default the machine's cores", min: 0, max: 256 },
     { name: 'max-connections', kind: 'int', valueName: 'N', description: 'most WebSocket connections in all; default 256', min: 1, max: 100_000 },
     { name: 'max-connections-per-address', kind: 'int', valueName: 'N', description: 'most WebSocket connections from one address (IPv6: one /64); default 32', min: 1, max: 100_000 },
     { name: 'max-pending-per-address', kind: 'int', valueName: 'N', description: 'most connections from one address that have not said hello yet; default 8', min: 1, max: 100_000 },

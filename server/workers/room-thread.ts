@@ -200,10 +200,24 @@ export class RoomThread implements RoomThreadLink {
         room.closedBy(msg.reason, this.takeRoutes(room));
         return;
       }
+      case 'log':
+        this.relayLog(msg.line);
+        return;
       case 'status':
         this.externalBytes = msg.externalBytes;
         for (const s of msg.rooms) this.rooms.get(s.id)?.reported(s);
         return;
+    }
+  }
+
+  private relayLog(line: string): void {
+    try {
+      const { level, msg, time: _time, pid: _pid, hostname: _hostname, ...fields } = JSON.parse(line) as Record<string, unknown>;
+      const name = typeof level === 'number' ? this.logger.levels.labels[level] : undefined;
+      const log = name === 'fatal' || name === 'error' || name === 'warn' || name === 'info' || name === 'debug' || name === 'trace' ? name : 'info';
+      this.logger[log](fields, typeof msg === 'string' ? msg : '');
+    } catch {
+      this.logger.warn({ worker: this.index, line: line.slice(0, 200) }, 'room worker wrote an unreadable log line');
     }
   }
 

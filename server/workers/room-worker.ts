@@ -3,7 +3,7 @@
 import '../physics-node.ts';
 import { parentPort, workerData } from 'node:worker_threads';
 import { SystemClock } from '../clock.ts';
-import { createLogger } from '../logger.ts';
+import { pino } from 'pino';
 import { createMetrics } from '../metrics.ts';
 import { createRoomFactory } from '../room-factory.ts';
 import type { ToWorker, WorkerInit } from './worker-protocol.ts';
@@ -13,7 +13,8 @@ import { loadScenarioSource } from './worker-scenarios.ts';
 const port = parentPort;
 if (!port) throw new Error('server/workers/room-worker.ts runs only as a worker thread');
 const init = workerData as WorkerInit;
-const logger = createLogger({ level: init.logLevel }).child({ worker: init.index });
+// Log lines go to the main thread, whose logger writes them where the server's own lines go.
+const logger = pino({ level: init.logLevel, base: { worker: init.index } }, { write: (line: string) => port.postMessage({ t: 'log', line }) });
 const scenarios = await loadScenarioSource(init.scenarioModules);
 const rooms = new WorkerRooms({
   factory: createRoomFactory({ scenarios, logger, recordDir: init.config.recordDir, hashEveryTicks: init.config.recordHashEveryTicks }),

@@ -90,7 +90,9 @@ export type FromWorker =
   | { t: 'out'; batch: ByteBatch; ticks: Array<[room: string, tick: number]> }
   | { t: 'gone'; member: number; closed: boolean; reason: string }
   | { t: 'closed'; room: string; reason: string }
-  | { t: 'status'; rooms: RoomStatus[]; externalBytes: number };
+  | { t: 'status'; rooms: RoomStatus[]; externalBytes: number }
+  /** One JSON log line of the worker's logger; the main thread's logger writes it. */
+  | { t: 'log'; line: string };
 
 /** One flush of member bytes: the distinct messages packed into `buffer`, and [member, offset, length, kind] quads. */
 export interface ByteBatch {
