@@ -3,6 +3,7 @@
 // (HTTP(S) + WebSocket on one port) until SIGINT/SIGTERM. Secrets may come from the environment (TAOS_ADMIN_TOKEN,
 // TAOS_JOIN_SECRET) so they stay out of `ps` output.
 import { readFileSync } from 'node:fs';
+import { availableParallelism } from 'node:os';
 import { DEFAULT_SCENARIO } from '../scenarios/index.ts';
 import { ADMIN_TOKEN_ENV, checkAdminTokenText } from '../server/access/admin-auth.ts';
 import { parseAllowedOrigins } from '../server/access/origin-policy.ts';
@@ -14,6 +15,8 @@ import { LogFormat } from '../server/pretty-log.ts';
 import { runServe, type ServeOptions } from './serve.ts';
 import type { ParsedArgs } from './args.ts';
 import { UsageError, type CliIo, type CommandSpec } from './command.ts';
+import { resolve as resolvePath } from 'node:path';
+import { pathToFileURL } from 'node:url';
 import { scenarioSource } from '../server/create-server.ts';
 import { isScenarioPath } from '../server/scenario-module.ts';
 import { checkParams, parseSeed, scenarioFromArg } from './scenario-setup.ts';
@@ -91,7 +94,8 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
   const scenario = args.string('scenario') ?? DEFAULT_SCENARIO;
   const def = await scenarioFromArg(scenario);
   // A game's own module: its scenario is the only one the server offers.
-  const own = isScenarioPath(scenario) ? { scenarios: scenarioSource([def]) } : {};
+  // Room workers import that module themselves: a definition holds functions and cannot be handed to a thread.
+  const own = isScenarioPath(scenario) ? { scenarios: scenarioSource([def]), workerScenarioModules: [pathToFileURL(resolvePath(scenario)).href] } : {};
   const params = args.pairs('param');
   checkParams(def, params);
   const record = args.string('record');
@@ -117,6 +121,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
       recordDir: record ?? null,
       maxClients: args.number('max-clients', 32),
       maxRooms: args.number('max-rooms'),
+      roomWorkers: args.number('room-workers', availableParallelism()),
       maxConnections: args.number('max-connections'),
       connectionPolicy,
       limits: args.has('hello-timeout-ms') ? { helloTimeoutMs: args.number('hello-timeout-ms') } : undefined,
@@ -162,6 +167,7 @@ export const serveCommand: CommandSpec = {
     { name: 'checkpoint-every', kind: 'int', valueName: 'SECONDS', description: `a checkpoint in recordings every SECONDS of play (0: none); default ${DEFAULT_CHECKPOINT_EVERY_SECONDS}`, min: 0, max: 86_400 },
     { name: 'max-clients', kind: 'int', valueName: 'N', description: 'most clients per room; default 32', min: 1, max: 1000 },
     { name: 'max-rooms', kind: 'int', valueName: 'N', description: 'most rooms at once (each is a Jolt world in the 128 MB heap); default 6', min: 1, max: 32 },
+    { name: 'room-workers', kind: 'int', valueName: 'N', description: "worker threads that run the rooms (0: every room on the main thread); default the machine's cores", min: 0, max: 256 },
     { name: 'max-connections', kind: 'int', valueName: 'N', description: 'most WebSocket connections in all; default 256', min: 1, max: 100_000 },
     { name: 'max-connections-per-address', kind: 'int', valueName: 'N', description: 'most WebSocket connections from one address (IPv6: one /64); default 32', min: 1, max: 100_000 },
     { name: 'max-pending-per-address', kind: 'int', valueName: 'N', description: 'most connections from one address that have not said hello yet; default 8', min: 1, max: 100_000 },

@@ -7,7 +7,9 @@ import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
+import type { HostedRoom, MemberSink, RoomEntry, Seat } from './hosted-room.ts';
 import { InputBuffer, OfferResult } from './input-buffer.ts';
+import { enterRoom } from './local-seat.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
 import { SnapshotFanOut } from './snapshot-fan-out.ts';
@@ -145,7 +147,7 @@ export function heldInput(last: InputCommand): InputCommand {
 }
 
 /** A running room; build it with `new Room(sim, opts)` and call start(). */
-export class Room {
+export class Room implements HostedRoom {
   readonly id: string;
   readonly scenarioName: string;
   readonly description: string;
@@ -162,6 +164,7 @@ export class Room {
   private nextPlayerId = 1;
   private closedReason: string | null = null;
   private snapshotAccumulator = 0;
+  private busySecondsTotal = 0;
   private lastBodyCount = 0;
   // Static bodies the scene was built with: drawn from the welcome, never in snapshots. Statics spawned later
   // (streamed terrain) travel in snapshots instead, so clients already in the room learn about them.
@@ -221,9 +224,19 @@ export class Room {
     return n;
   }
 
+  /** Ids of the players in the room (connected or held). */
+  playerIds(): number[] {
+    return [...this.players.keys()];
+  }
+
   /** Whether a player is in the room (connected or held). */
   hasPlayer(playerId: number): boolean {
     return this.players.has(playerId);
+  }
+
+  /** Wall seconds this room's ticks have taken since it opened (its load on its thread). */
+  get busySeconds(): number {
+    return this.busySecondsTotal;
   }
 
   /** Whether the room has closed. */
@@ -276,6 +289,15 @@ export class Room {
       this.tickClock.start();
     }
     return { playerId, joinTick, firstInputTick };
+  }
+
+  /** Seats a member (a new player, or a held one taken back) with its welcome; rejects with a RoomError when refused. */
+  enter(sink: MemberSink, entry: RoomEntry): Promise<Seat> {
+    try {
+      return Promise.resolve(enterRoom(this, sink, entry, this.opts.metrics));
+    } catch (error) {
+      return Promise.reject(error instanceof Error ? error : new Error(String(error)));
+    }
   }
 
   /** Removes a player; the leave goes into the next tick's record (a join not yet applied is simply dropped). */
@@ -388,6 +410,7 @@ export class Room {
     else send();
     for (const fn of this.tickListeners) fn(record, events);
     const seconds = (performance.now() - started) / 1000;
+    this.busySecondsTotal += seconds;
     m.tickDuration.observe(seconds);
     if (seconds > 1 / TICK_RATE_HZ) m.tickOverruns.inc();
   }
