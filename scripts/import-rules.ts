@@ -15,6 +15,7 @@ const AREA_PREFIXES = [
   ['server/', 'server'],
   ['cli/', 'cli'],
   ['scenarios/', 'scenarios'],
+  ['examples/', 'examples'],
   ['bench/', 'bench'],
   ['tests/', 'tests'],
   ['scripts/', 'scripts'],
@@ -53,6 +54,8 @@ export const MAY_IMPORT: Readonly<Record<Area, readonly Area[] | '*'>> = {
   // The command line composes everything but the page.
   cli: ['server', 'sdk', 'scenarios', 'shared/physics', 'shared/sim', 'shared/protocol', ...SHARED_BASE],
   bin: ['cli'],
+  // Example games use only what the package exports (see EXAMPLE_ENTRY_POINTS).
+  examples: ['server', 'cli', 'sdk', 'shared/physics', 'shared/sim'],
   bench: '*',
   tests: '*',
   scripts: '*',
@@ -81,6 +84,24 @@ export const PHYSICS_ENTRY_POINTS: Readonly<Record<string, readonly Area[] | '*'
   // Not public API: what checkpoints and the tick need beyond index.ts.
   'shared/physics/internal.ts': ['shared/sim'],
 };
+
+/**
+ * The only files example games may import: the modules the package's entry points re-export (the server's
+ * createServer, the SDK, the physics wrapper, the simulation and its input logs), so an example reads like a project
+ * built on the installed package.
+ */
+export const EXAMPLE_ENTRY_POINTS: ReadonlySet<string> = new Set([
+  'server/create-server.ts',
+  'server/physics-node.ts',
+  'sdk/index.ts',
+  'shared/physics/index.ts',
+  'shared/sim/define-scenario.ts',
+  'shared/sim/det-math.ts',
+  'shared/sim/input.ts',
+  'shared/sim/simulation.ts',
+  'shared/sim/types.ts',
+  'cli/replay-session.ts',
+]);
 
 /** Areas allowed to import any file of shared/physics (unit tests of its internals). */
 const PHYSICS_INTERNALS_OPEN_TO: readonly Area[] = ['tests'];
@@ -181,6 +202,10 @@ export function checkImports(files: readonly SourceFile[]): ImportProblem[] {
         const rule = MAY_IMPORT[area];
         const may = rule === '*' ? 'anything' : [area, ...rule].join(', ');
         report(imp.line, `${area}/ may not import ${targetArea}/ (${target}); ${area}/ may import: ${may}`);
+        continue;
+      }
+      if (area === 'examples' && targetArea !== 'examples' && !EXAMPLE_ENTRY_POINTS.has(target)) {
+        report(imp.line, `examples/ use only the package's public modules, not ${target} (allowed: ${[...EXAMPLE_ENTRY_POINTS].join(', ')})`);
         continue;
       }
       if (targetArea === 'shared/physics' && area !== 'shared/physics' && !PHYSICS_INTERNALS_OPEN_TO.includes(area)) {

@@ -56,6 +56,18 @@ describe('checkImports', () => {
     ]);
   });
 
+  it('lets examples import only the package\'s public modules and each other', () => {
+    expect(
+      problems([
+        file('examples/g/game.ts', "import { defineScenario } from '../../shared/sim/define-scenario.ts';", "import { Room } from '../../server/room.ts';", "import { x } from './rules.ts';"),
+        file('examples/g/rules.ts', "import { connect } from '../../sdk/index.ts';", "import { encode } from '../../shared/protocol/codec.ts';"),
+      ]).map((p) => p.replace(/ \(allowed: .*\)$/, '')),
+    ).toEqual([
+      "examples/g/game.ts:3: examples/ use only the package's public modules, not server/room.ts",
+      'examples/g/rules.ts:3: examples/ may not import shared/protocol/ (shared/protocol/codec.ts); examples/ may import: examples, server, cli, sdk, shared/physics, shared/sim',
+    ]);
+  });
+
   it('lets other areas into the physics wrapper only through index.ts, and only shared/sim through internal.ts', () => {
     expect(
       problems([
