@@ -47,7 +47,7 @@ class FakeSim implements RoomSimulation {
   staticDescriptors() {
     return [];
   }
-  bodyDescriptor() {
+  bodyDescriptor(_id: number): BodyDescriptor | undefined {
     return undefined;
   }
   destroy(): void {
