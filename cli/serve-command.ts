@@ -1,4 +1,4 @@
-// `serve [--port 8080] [--host 127.0.0.1] [--scenario NAME] [--param k=v] [--snapshot-rate 30] [--record DIR]
+// `serve [--port 8080] [--host 127.0.0.1] [--scenario NAME] [--param k=v] [--snapshot-rate 30] [--net-mode auto] [--record DIR]
 // [--max-clients N] [--tls-cert FILE --tls-key FILE] [--trust-proxy] [access flags] …`: runs the networked server
 // (HTTP(S) + WebSocket on one port) until SIGINT/SIGTERM. Secrets may come from the environment (TAOS_ADMIN_TOKEN,
 // TAOS_JOIN_SECRET) so they stay out of `ps` output.
@@ -8,6 +8,7 @@ import { ADMIN_TOKEN_ENV, checkAdminTokenText } from '../server/access/admin-aut
 import { parseAllowedOrigins } from '../server/access/origin-policy.ts';
 import { JOIN_SECRET_ENV, MIN_JOIN_SECRET_LENGTH } from '../server/access/seat-tokens.ts';
 import type { ConnectionPolicyOptions } from '../server/connection-policy.ts';
+import { isNetModeRequest, type NetModeRequest } from '../server/net-mode-policy.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import { runServe, type ServeOptions } from './serve.ts';
 import type { ParsedArgs } from './args.ts';
@@ -64,6 +65,12 @@ function accessOptions(args: ParsedArgs): Pick<ServeOptions, 'allowedOrigins' | 
   };
 }
 
+function netModeFlag(value: string | undefined): NetModeRequest | undefined {
+  if (value === undefined) return undefined;
+  if (!isNetModeRequest(value)) throw new UsageError(`--net-mode must be snapshot, predict or auto, got "${value}"`);
+  return value;
+}
+
 async function run(args: ParsedArgs, io: CliIo): Promise<number> {
   const scenario = args.string('scenario') ?? DEFAULT_SCENARIO;
   const def = scenarioNamed(scenario);
@@ -86,6 +93,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
       params,
       seed: parseSeed(args.string('seed')),
       snapshotRateHz: args.number('snapshot-rate', 30),
+      netMode: netModeFlag(args.string('net-mode')),
       recordDir: record ?? null,
       maxClients: args.number('max-clients', 32),
       maxRooms: args.number('max-rooms'),
@@ -121,6 +129,7 @@ export const serveCommand: CommandSpec = {
     { name: 'param', kind: 'pair', valueName: 'k=v', description: 'scenario parameter (repeatable)' },
     { name: 'seed', kind: 'string', valueName: 'SEED', description: 'simulation seed of every room; default 1' },
     { name: 'snapshot-rate', kind: 'int', valueName: 'HZ', description: `snapshots per second per client (1-${TICK_RATE_HZ}); default 30`, min: 1, max: TICK_RATE_HZ },
+    { name: 'net-mode', kind: 'string', valueName: 'MODE', description: 'how rooms serve clients: snapshot, predict, or auto (predict where a frame affords the rollback); default auto' },
     { name: 'record', kind: 'string', valueName: 'DIR', description: "write every room's input log into DIR" },
     { name: 'max-clients', kind: 'int', valueName: 'N', description: 'most clients per room; default 32', min: 1, max: 1000 },
     { name: 'max-rooms', kind: 'int', valueName: 'N', description: 'most rooms at once (each is a Jolt world in the 128 MB heap); default 6', min: 1, max: 32 },

@@ -13,6 +13,7 @@ import {
   type ClientMessage,
   type HelloMessage,
   type ServerMessage,
+  NetMode,
 } from '../shared/protocol/index.ts';
 import type { SimEvent } from '../shared/sim/types.ts';
 import { admitSeat, type SessionAccess } from './access/admission.ts';
@@ -42,6 +43,8 @@ export interface SessionLimits {
   snapshotSkipBufferedBytes: number;
   /** Disconnect when this many bytes are queued (reliable messages cannot be dropped, nor queued without bound). */
   maxBufferedBytes: number;
+  /** Predict mode: checkpoints a client may ask for again (resync); more are refused with rate-limited. */
+  resyncs?: RateLimit;
 }
 
 /**
@@ -58,6 +61,9 @@ export const DEFAULT_SESSION_LIMITS: Readonly<SessionLimits> = Object.freeze({
   snapshotSkipBufferedBytes: 256 * 1024,
   maxBufferedBytes: 8 * 1024 * 1024,
 });
+
+/** Default resync limit: one checkpoint per second. */
+export const DEFAULT_RESYNC_LIMIT: Readonly<RateLimit> = Object.freeze({ perSecond: 1, burst: 1 });
 
 /** What a session needs from the server. */
 export interface SessionContext {
@@ -99,6 +105,9 @@ export class ClientSession implements RoomMember, ResumeHolder {
   private readonly messageLimiter: RateLimiter;
   private readonly inputLimiter: RateLimiter;
   private readonly badLimiter: RateLimiter;
+  private readonly resyncLimiter: RateLimiter;
+  /** How this client is served: the room's mode, or snapshots after a predicting client fell back. */
+  private delivery: NetMode = NetMode.Snapshot;
   private state: 'hello' | 'joining' | 'joined' | 'closed' = 'hello';
   private helloTimer: TimerHandle | null;
   private room: Room | null = null;
@@ -113,6 +122,7 @@ export class ClientSession implements RoomMember, ResumeHolder {
     this.messageLimiter = new RateLimiter(ctx.clock, ctx.limits.messages);
     this.inputLimiter = new RateLimiter(ctx.clock, ctx.limits.inputs);
     this.badLimiter = new RateLimiter(ctx.clock, ctx.limits.badMessages);
+    this.resyncLimiter = new RateLimiter(ctx.clock, ctx.limits.resyncs ?? DEFAULT_RESYNC_LIMIT);
     this.helloTimer = ctx.clock.setTimer(ctx.limits.helloTimeoutMs, () => {
       this.helloTimer = null;
       if (this.state === 'hello') this.end(ByeReason.Timeout, `no hello within ${ctx.limits.helloTimeoutMs} ms`, CloseCode.PolicyViolation);
@@ -234,7 +244,52 @@ export class ClientSession implements RoomMember, ResumeHolder {
       case 'bye':
         this.end(ByeReason.ClientBye, 'goodbye', CloseCode.Normal);
         return;
+      case 'resync':
+        if (this.state !== 'joined' || !this.room || this.delivery !== NetMode.Predict) {
+          this.refuse(ErrorCode.UnexpectedMessage, 'resync is for clients served in predict mode');
+          return;
+        }
+        if (!this.resyncLimiter.take()) {
+          this.refuse(ErrorCode.RateLimited, 'resync asked for again too soon: at most one checkpoint per second');
+          return;
+        }
+        this.sendCheckpoint();
+        return;
+      case 'netMode':
+        this.onNetMode(msg.mode);
+        return;
     }
+  }
+
+  /** A predicting client falls back to snapshots (or comes back); only a predict-mode room serves predict. */
+  private onNetMode(mode: NetMode): void {
+    const room = this.room;
+    if (this.state !== 'joined' || !room) {
+      this.refuse(ErrorCode.UnexpectedMessage, 'netMode before the welcome');
+      return;
+    }
+    if (mode === this.delivery) return;
+    if (mode === NetMode.Predict && room.netMode !== NetMode.Predict) {
+      this.refuse(ErrorCode.UnexpectedMessage, `room ${room.id} serves snapshots only`);
+      return;
+    }
+    if (mode === NetMode.Predict && !this.resyncLimiter.take()) {
+      this.refuse(ErrorCode.RateLimited, 'net mode switched back to predict too soon: at most one checkpoint per second');
+      return;
+    }
+    this.delivery = mode;
+    if (mode === NetMode.Predict) {
+      this.sendCheckpoint();
+      return;
+    }
+    // A fresh encoder: the first snapshot is full and describes every body (the client drew from its own simulation).
+    this.encoder = new SnapshotEncoder(room.snapshots.format);
+  }
+
+  private sendCheckpoint(): void {
+    const feed = this.room?.predictFeed;
+    if (!feed) return;
+    this.sendEncoded(feed.checkpoint());
   }
 
   private onHello(hello: HelloMessage): void {
@@ -309,6 +364,8 @@ export class ClientSession implements RoomMember, ResumeHolder {
     const resume = this.ctx.access.resume;
     const welcome = buildWelcome(room, playerId, { token: resume ? resume.issue(room, playerId, this) : null, graceMs: resume ? resume.graceMs : 0, resumed });
     this.encoder = welcome.encoder;
+    // Every client starts on snapshots; a predicting one asks for predict (netMode) and gets a checkpoint.
+    this.delivery = NetMode.Snapshot;
     this.send(welcome.message);
   }
 
@@ -360,14 +417,15 @@ export class ClientSession implements RoomMember, ResumeHolder {
 
   /** Reliable delivery of one tick's events (RoomMember). */
   deliverEvents(_tick: number, events: readonly SimEvent[]): void {
-    if (this.state !== 'joined' || !this.room) return;
+    // A predicting client derives every event from the confirmed ticks it simulates itself.
+    if (this.state !== 'joined' || !this.room || this.delivery === NetMode.Predict) return;
     if (this.tooFarBehind()) return;
     this.sendEncoded(this.room.snapshots.eventsMessage(events));
   }
 
   /** A snapshot for this client, unless its socket is backed up (RoomMember). */
   deliverFrame(frame: WorldFrame): void {
-    if (this.state !== 'joined' || !this.encoder || !this.room) return;
+    if (this.state !== 'joined' || !this.encoder || !this.room || this.delivery === NetMode.Predict) return;
     if (this.tooFarBehind()) return;
     const m = this.ctx.metrics;
     // A full snapshot is on its way and not acked yet: another full one would only repeat it.
@@ -384,6 +442,13 @@ export class ClientSession implements RoomMember, ResumeHolder {
     this.stats.snapshotBytes += size;
     m.snapshotBytes.observe(size);
     m.snapshotsSent.inc({ kind: encoded.baselineTick === null ? 'full' : 'delta' });
+  }
+
+  /** Predict mode: a confirmed record, reliable and in order like events (RoomMember). */
+  deliverRecord(message: Uint8Array): void {
+    if (this.state !== 'joined' || !this.room || this.delivery !== NetMode.Predict) return;
+    if (this.tooFarBehind()) return;
+    this.sendEncoded(message);
   }
 
   /** The room dropped this client after a failed delivery (RoomMember). */

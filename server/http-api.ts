@@ -44,6 +44,9 @@ export function createHttpApi(opts: HttpApiOptions): HttpApi {
     if (room.scenarioName !== req.scenario) {
       throw new HttpError(409, HttpErrorCode.RoomExists, `room ${quote(room.id)} is open with scenario ${quote(room.scenarioName)}, not ${quote(req.scenario)}`);
     }
+    if (req.netMode !== undefined && req.netMode !== room.netModeRequested) {
+      throw new HttpError(409, HttpErrorCode.RoomExists, `room ${quote(room.id)} is open with net mode ${room.netModeRequested} (serving ${room.netMode}), not ${req.netMode}`);
+    }
     for (const key of Object.keys(req.params ?? {})) {
       if (room.params[key] !== params[key]) throw new HttpError(409, HttpErrorCode.RoomExists, `room ${quote(room.id)} is open with ${key}=${room.params[key]}, not ${params[key]}`);
     }
@@ -69,13 +72,13 @@ export function createHttpApi(opts: HttpApiOptions): HttpApi {
         throw new HttpError(400, HttpErrorCode.BadParam, error instanceof Error ? error.message : String(error));
       }
       if (req.roomId === undefined) {
-        const room = await game.rooms.resolve({ scenario: req.scenario, params: req.params }).catch((e: unknown) => Promise.reject(creationRefused(e, opts.logger)));
+        const room = await game.rooms.resolve({ scenario: req.scenario, params: req.params, netMode: req.netMode }).catch((e: unknown) => Promise.reject(creationRefused(e, opts.logger)));
         return { room: room.info(), created: true };
       }
       if (!isRoomId(req.roomId)) throw new HttpError(400, HttpErrorCode.BadRoomId, `room id must be 1-64 characters of A-Z a-z 0-9 _ -, got ${quote(req.roomId)}`);
       const existing = game.rooms.get(req.roomId);
       if (existing) return { room: matchExisting(existing, req, params), created: false };
-      const room = await game.rooms.create(req.roomId, req.scenario, req.params ?? {}).catch((e: unknown) => Promise.reject(creationRefused(e, opts.logger)));
+      const room = await game.rooms.create(req.roomId, req.scenario, req.params ?? {}, req.netMode).catch((e: unknown) => Promise.reject(creationRefused(e, opts.logger)));
       // Another request may have been opening the same id at the same moment: it must agree too.
       return { room: matchExisting(room, req, params), created: true };
     },

@@ -4,6 +4,7 @@ import type { Clock, TimerHandle } from '../shared/clock.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
+import { decideNetMode, type NetModeRequest } from './net-mode-policy.ts';
 import { Room, RoomError, type RoomInfo, type RoomRecorder, type RoomSimulation } from './room.ts';
 
 /** The id of the room that always exists. */
@@ -57,6 +58,8 @@ export interface RoomManagerOptions {
   maxCatchUpTicks?: number;
   maxInputLeadTicks?: number;
   pauseWhenEmpty?: boolean;
+  /** Net mode of rooms not asked for one ('auto': predict where the cost estimate allows). Default 'auto'. */
+  netMode?: NetModeRequest;
 }
 
 /** Where a client wants to go: an existing room by id, a new room from a scenario, or the default room. */
@@ -64,6 +67,8 @@ export interface RoomRequest {
   roomId?: string;
   scenario?: string;
   params?: Readonly<Record<string, number>>;
+  /** Net mode of a room this request opens (default: the server's). */
+  netMode?: NetModeRequest;
 }
 
 /** Owns every room of the process. */
@@ -129,13 +134,13 @@ export class RoomManager {
       if (scenario === undefined) {
         throw new RoomError(ErrorCode.RoomNotFound, `no room "${req.roomId}" (open rooms: ${this.all().map((r) => r.id).join(', ') || 'none'}; a scenario name opens a room of it)`);
       }
-      return this.create(req.roomId, scenario, req.params ?? {});
+      return this.create(req.roomId, scenario, req.params ?? {}, req.netMode);
     }
     if (req.scenario !== undefined) {
       let id: string;
       do id = `${req.scenario}-${this.nextRoomNumber++}`.slice(0, 64);
       while (this.rooms.has(id) || this.creating.has(id));
-      return this.create(id, req.scenario, req.params ?? {});
+      return this.create(id, req.scenario, req.params ?? {}, req.netMode);
     }
     const def = this.rooms.get(DEFAULT_ROOM_ID);
     if (!def) throw new RoomError(ErrorCode.RoomNotFound, 'the default room is not open');
@@ -143,7 +148,7 @@ export class RoomManager {
   }
 
   /** Creates a room (shared by concurrent requests for the same id). Throws RoomError for limits and bad scenarios. */
-  create(id: string, scenario: string, params: Readonly<Record<string, number>>): Promise<Room> {
+  create(id: string, scenario: string, params: Readonly<Record<string, number>>, netMode?: NetModeRequest): Promise<Room> {
     if (this.closing) return Promise.reject(new RoomError(ErrorCode.Internal, 'the server is shutting down'));
     const existing = this.rooms.get(id);
     if (existing) return Promise.resolve(existing);
@@ -154,12 +159,12 @@ export class RoomManager {
       return Promise.reject(new RoomError(ErrorCode.ServerFull, `the server already runs its limit of ${maxRooms} rooms`));
     }
     if (!this.opts.factory.hasScenario(scenario)) return Promise.reject(new RoomError(ErrorCode.BadMessage, `unknown scenario "${scenario}"`));
-    const promise = this.build(id, scenario, params).finally(() => this.creating.delete(id));
+    const promise = this.build(id, scenario, params, netMode ?? this.opts.netMode ?? 'auto').finally(() => this.creating.delete(id));
     this.creating.set(id, promise);
     return promise;
   }
 
-  private async build(id: string, scenario: string, params: Readonly<Record<string, number>>): Promise<Room> {
+  private async build(id: string, scenario: string, params: Readonly<Record<string, number>>, netMode: NetModeRequest): Promise<Room> {
     const seed = this.opts.seed ?? 1;
     let built: RoomSimulationBuild;
     try {
@@ -174,8 +179,12 @@ export class RoomManager {
       built.sim.destroy();
       throw new RoomError(ErrorCode.Internal, `cannot start the recording of room ${id}: ${error instanceof Error ? error.message : String(error)}`);
     }
+    const decision = decideNetMode(netMode, scenario, built.params);
     const room = new Room(built.sim, {
       id,
+      netMode: decision.mode,
+      netModeRequested: netMode,
+      netModeNote: decision.note,
       scenarioName: scenario,
       description: built.description,
       bounds: built.bounds,
@@ -204,7 +213,7 @@ export class RoomManager {
       this.armEmptyTimer(room);
     }
     room.start();
-    this.opts.logger.info({ room: id, scenario, params: built.params, recording: recorder !== null }, 'room opened');
+    this.opts.logger.info({ room: id, scenario, params: built.params, recording: recorder !== null, netMode: decision.mode, netModeNote: decision.note }, 'room opened');
     return room;
   }
 
