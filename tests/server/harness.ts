@@ -6,6 +6,7 @@ import type { SessionLimits } from '../../server/client-session.ts';
 import { GameServer } from '../../server/game-server.ts';
 import { silentLogger, type Logger } from '../../server/logger.ts';
 import { memoryPeerConnection } from '../../server/memory-peer.ts';
+import type { NetModeRequest } from '../../server/net-mode-policy.ts';
 import { MemoryNetwork, type MemoryNetworkOptions, type MemoryTransport } from '../../sdk/index.ts';
 import { createMetrics } from '../../server/metrics.ts';
 import { createRoomFactory, type ScenarioSource } from '../../server/room-factory.ts';
@@ -56,6 +57,8 @@ export interface HarnessOptions {
   requireSeat?: boolean;
   /** The server's logger (default: silent). */
   logger?: Logger;
+  /** Net mode of the rooms (default: the server's, 'auto'). */
+  netMode?: NetModeRequest;
 }
 
 /** A protocol-level client: records every decoded message; decodes and acks snapshots. */
@@ -170,6 +173,7 @@ export async function startHarness(opts: HarnessOptions): Promise<Harness> {
     resumeGraceMs: opts.resumeGraceMs,
     seats: opts.seats,
     requireSeat: opts.requireSeat,
+    netMode: opts.netMode,
   });
   const histories = new Map<string, { records: TickInputRecord[]; hashes: string[] }>();
   const watch = (room: Room): void => {
