@@ -23,6 +23,11 @@ export interface PredictOptions {
   createSimulation(setup: PredictSetup): Promise<PredictSimulation>;
   /** Most ticks the prediction runs ahead of the newest confirmed tick. Default 30 (500 ms). */
   maxAheadTicks?: number;
+  /**
+   * A fast checkpoint every this many ticks (1: every tick). Saving a big world costs more than stepping it; a
+   * rollback then re-steps the few confirmed ticks since the checkpoint before the mismatch. Default 4.
+   */
+  checkpointEveryTicks?: number;
   /** Time one frame may spend re-simulating (ms). Default 1000/60. */
   frameBudgetMs?: number;
   /** Fall back to snapshots after this long with every frame over budget (ms). Default 2000. */
@@ -267,7 +272,7 @@ export class PredictSession {
       this.predictor = new Predictor(sim, m, this.welcome.playerId, {
         confirmedEvents: (events) => this.link.events(events),
         desync: (tick, ours, theirs) => this.onDesync(tick, ours, theirs),
-      }, this.opts.maxAheadTicks ?? 30);
+      }, this.opts.maxAheadTicks ?? 30, this.opts.checkpointEveryTicks ?? 4);
     } catch (error) {
       this.fallBack(`the checkpoint could not be restored: ${(error as Error).message}`);
       return;

@@ -77,17 +77,23 @@ export class Predictor {
   private nextRecordTick: number;
   /** The oldest tick not yet confirmed (every tick before it matches the server). */
   private confirmed: number;
+  /** Confirmed records from the window's oldest checkpoint on (a rollback re-steps them up to the mismatch). */
+  private readonly confirmedRecords = new Map<number, TickInputRecord>();
   private lastOwn: InputCommand | null = null;
   private verified = 0;
   /** The own command each unconfirmed tick was predicted with (re-simulation reuses it). */
   private readonly ownHistory = new Map<number, InputCommand>();
 
-  constructor(sim: PredictSimulation, checkpoint: { tick: number; inputs: PlayerInputState[] }, playerId: number, handlers: PredictorHandlers, maxAheadTicks = 30) {
+  /**
+   * `checkpointEveryTicks`: save a fast checkpoint every this many ticks (1: every tick). In big scenes saving costs
+   * more than stepping; a rollback then re-steps up to this many − 1 confirmed ticks from the checkpoint before it.
+   */
+  constructor(sim: PredictSimulation, checkpoint: { tick: number; inputs: PlayerInputState[] }, playerId: number, handlers: PredictorHandlers, maxAheadTicks = 30, checkpointEveryTicks = 1) {
     this.sim = sim;
     this.playerId = playerId;
     this.handlers = handlers;
     this.maxAheadTicks = maxAheadTicks;
-    this.window = new RollbackWindow(sim, maxAheadTicks + 2);
+    this.window = new RollbackWindow(sim, maxAheadTicks + checkpointEveryTicks + 2, checkpointEveryTicks);
     this.coder = new RecordDeltaCoder(checkpoint.inputs);
     this.nextRecordTick = checkpoint.tick;
     this.confirmed = checkpoint.tick;
@@ -130,6 +136,7 @@ export class Predictor {
   advance(targetTick: number, ownCommand: (tick: number) => InputCommand | undefined): AdvanceReport {
     const present = this.sim.tick;
     let rollbackFrom: number | null = null;
+    let restoredFrom = present;
     let stepped = 0;
     for (const { record, hash } of this.queue.splice(0)) {
       const tick = record.tick;
@@ -140,8 +147,14 @@ export class Predictor {
           continue;
         }
         rollbackFrom = tick;
-        this.window.restore(tick);
+        const from = this.window.latestAtOrBefore(tick)!;
+        restoredFrom = from;
+        this.window.restore(from);
         for (const t of [...this.slots.keys()]) if (t >= tick) this.slots.delete(t);
+        for (let t = from; t < tick; t++) {
+          this.window.step(this.confirmedRecords.get(t)!);
+          stepped++;
+        }
       }
       this.stepSlot(record);
       stepped++;
@@ -152,9 +165,13 @@ export class Predictor {
       this.stepSlot(this.predictedRecord(this.sim.tick, ownCommand));
       stepped++;
     }
-    this.window.forgetBefore(this.confirmed);
+    const oldest = this.window.latestAtOrBefore(this.confirmed);
+    if (oldest !== null) {
+      this.window.forgetBefore(oldest);
+      for (const t of this.confirmedRecords.keys()) if (t < oldest) this.confirmedRecords.delete(t);
+    }
     for (const t of this.ownHistory.keys()) if (t < this.confirmed) this.ownHistory.delete(t);
-    const rollbackTicks = rollbackFrom === null ? 0 : Math.max(0, Math.min(present, this.sim.tick) - rollbackFrom);
+    const rollbackTicks = rollbackFrom === null ? 0 : Math.max(0, Math.min(present, this.sim.tick) - restoredFrom);
     return { rollbackTicks, steppedTicks: stepped, corrected: rollbackFrom !== null && rollbackFrom < present };
   }
 
@@ -162,6 +179,7 @@ export class Predictor {
   dispose(): void {
     this.window.dispose();
     this.slots.clear();
+    this.confirmedRecords.clear();
     this.ownHistory.clear();
     this.queue.length = 0;
   }
@@ -189,6 +207,7 @@ export class Predictor {
 
   private confirm(tick: number, slot: Slot, theirs: string | null): void {
     this.slots.delete(tick);
+    this.confirmedRecords.set(tick, slot.record);
     this.confirmed = tick + 1;
     if (slot.events.length > 0) this.handlers.confirmedEvents(slot.events);
     if (theirs === null || slot.hash === null) return;

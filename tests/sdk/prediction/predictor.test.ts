@@ -18,7 +18,8 @@ const AHEAD_TICKS = 4;
 const OWN = 1;
 
 describe('predictor', () => {
-  it('confirms the server events and hashes through joins, leaves, spawns and removals inside the rollback window', async () => {
+  for (const every of [1, 4]) {
+  it(`confirms the server events and hashes through joins, leaves, spawns and removals inside the rollback window (a checkpoint every ${every} ticks)`, async () => {
     const records = new BotScript({ seed: 21, bots: 4, joinTicks: [0, 30, 33, 90], leaveTicks: [-1, 120, -1, 200] }).take(TICKS + DELAY_TICKS + AHEAD_TICKS);
     const server = await Simulation.create({ scenario: characterCourse, seed: 2 });
     const client = await Simulation.create({ scenario: characterCourse, seed: 2 });
@@ -26,7 +27,7 @@ describe('predictor', () => {
     const serverEvents: SimEvent[] = [];
     const clientEvents: SimEvent[] = [];
     const desyncs: string[] = [];
-    const predictor = new Predictor(client, { tick: 0, inputs: [] }, OWN, { confirmedEvents: (e) => clientEvents.push(...e), desync: (t, a, b) => desyncs.push(`${t}: ${a} ≠ ${b}`) }, 30);
+    const predictor = new Predictor(client, { tick: 0, inputs: [] }, OWN, { confirmedEvents: (e) => clientEvents.push(...e), desync: (t, a, b) => desyncs.push(`${t}: ${a} ≠ ${b}`) }, 30, every);
     const ownCommand = (tick: number) => records[tick].commands.find((c) => c.playerId === OWN)?.input;
     const wire: RecordMessage[] = [];
     let rollbacks = 0;
@@ -57,6 +58,7 @@ describe('predictor', () => {
       client.destroy();
     }
   });
+  }
 
   it('stops predicting further ahead than its window and catches up from confirmed records', async () => {
     const records = new BotScript({ seed: 5, bots: 2, joinSpacingTicks: 0 }).take(80);
