@@ -109,8 +109,11 @@ export class PredictSession {
   private sim: PredictSimulation | null = null;
   private simPromise: Promise<PredictSimulation> | null = null;
   private predictor: Predictor | null = null;
-  /** Records that arrived before their checkpoint was applied. */
+  /** Records that arrived after the latest checkpoint, before it was applied. */
   private pending: RecordMessage[] = [];
+  /** The newest checkpoint: only it is applied (an older one still waiting for the simulation is skipped). */
+  private latestCheckpoint: CheckpointMessage | null = null;
+  private disposed = false;
   private checkpoints = 0;
   private modeValue: PredictionStats['mode'] = 'starting';
   private reason: string | null = null;
@@ -148,6 +151,7 @@ export class PredictSession {
     this.awaitingCheckpoint = false;
     this.resyncSentMs = null;
     this.pending = [];
+    this.latestCheckpoint = m;
     this.simPromise ??= this.opts.createSimulation({ scenario: this.welcome.scenario.name, params: { ...this.welcome.scenario.params }, seed: m.seed });
     this.simPromise.then(
       (sim) => this.start(sim, m),
@@ -242,6 +246,7 @@ export class PredictSession {
 
   /** Frees the local simulation. */
   dispose(): void {
+    this.disposed = true;
     this.predictor?.dispose();
     this.predictor = null;
     this.sim?.destroy();
@@ -259,10 +264,12 @@ export class PredictSession {
   }
 
   private start(sim: PredictSimulation, m: CheckpointMessage): void {
-    if (!this.active) {
-      sim.destroy();
+    if (!this.active || this.disposed) {
+      // The link ended or fell back while the simulation was being built: nobody will use it.
+      if (this.sim !== sim) sim.destroy();
       return;
     }
+    if (m !== this.latestCheckpoint) return;
     this.sim = sim;
     this.verifiedBefore += this.predictor?.hashesVerified ?? 0;
     this.predictor?.dispose();
