@@ -8,8 +8,9 @@ import type { GameServer } from './game-server.ts';
 import { HttpError, HttpErrorCode } from './http-errors.ts';
 import type { CreateRoomRequest, HttpApi } from './http-server.ts';
 import type { Logger } from './logger.ts';
-import { renderMetrics, type ServerMetrics } from './metrics.ts';
-import { RoomError, type Room, type RoomInfo } from './room.ts';
+import type { ServerMetrics } from './metrics.ts';
+import type { HostedRoom } from './hosted-room.ts';
+import { RoomError, type RoomInfo } from './room.ts';
 import type { ScenarioSource } from './room-factory.ts';
 import { DEFAULT_ROOM_ID, isRoomId } from './room-manager.ts';
 
@@ -39,18 +40,20 @@ function creationRefused(error: unknown, logger: Logger): HttpError {
 export function createHttpApi(opts: HttpApiOptions): HttpApi {
   const { game, scenarios } = opts;
 
-  // A room asked for by id that is already open: the same room when scenario and given parameters match, else 409.
-  const matchExisting = (room: Room, req: CreateRoomRequest, params: Readonly<Record<string, number>>): RoomInfo => {
+  // A room asked for by id that is already open: the same room when scenario, given parameters and net mode match,
+  // else 409. A room this request just opened keeps the mode its cost allowed (its netModeNote says why).
+  const matchExisting = (room: HostedRoom, req: CreateRoomRequest, params: Readonly<Record<string, number>>, opened = false): RoomInfo => {
     if (room.scenarioName !== req.scenario) {
       throw new HttpError(409, HttpErrorCode.RoomExists, `room ${quote(room.id)} is open with scenario ${quote(room.scenarioName)}, not ${quote(req.scenario)}`);
     }
-    if (req.netMode !== undefined && req.netMode !== room.netModeRequested) {
-      throw new HttpError(409, HttpErrorCode.RoomExists, `room ${quote(room.id)} is open with net mode ${room.netModeRequested} (serving ${room.netMode}), not ${req.netMode}`);
+    const info = room.info();
+    if (!opened && req.netMode !== undefined && req.netMode !== 'auto' && req.netMode !== info.netMode) {
+      throw new HttpError(409, HttpErrorCode.RoomExists, `room ${quote(room.id)} is open in ${info.netMode} mode, not ${req.netMode}${info.netModeNote ? ` (${info.netModeNote})` : ''}`);
     }
     for (const key of Object.keys(req.params ?? {})) {
       if (room.params[key] !== params[key]) throw new HttpError(409, HttpErrorCode.RoomExists, `room ${quote(room.id)} is open with ${key}=${room.params[key]}, not ${params[key]}`);
     }
-    return room.info();
+    return info;
   };
 
   return {
@@ -80,7 +83,7 @@ export function createHttpApi(opts: HttpApiOptions): HttpApi {
       if (existing) return { room: matchExisting(existing, req, params), created: false };
       const room = await game.rooms.create(req.roomId, req.scenario, req.params ?? {}, req.netMode).catch((e: unknown) => Promise.reject(creationRefused(e, opts.logger)));
       // Another request may have been opening the same id at the same moment: it must agree too.
-      return { room: matchExisting(room, req, params), created: true };
+      return { room: matchExisting(room, req, params, true), created: true };
     },
     async deleteRoom(id) {
       if (id === DEFAULT_ROOM_ID) throw new HttpError(409, HttpErrorCode.DefaultRoom, 'the default room stays open while the server runs');
@@ -96,7 +99,7 @@ export function createHttpApi(opts: HttpApiOptions): HttpApi {
       const seat = opts.access.seats.issue(roomId, req.ttlSeconds === undefined ? undefined : req.ttlSeconds * 1000);
       return { token: seat.token, roomId: seat.roomId, seatId: seat.seatId, expiresAt: new Date(seat.expiresAtMs).toISOString() };
     },
-    metrics: () => renderMetrics(opts.metrics),
+    metrics: () => game.renderMetrics(),
     authorize: opts.access.authorize,
     staticFiles: (req, res) => opts.staticFiles(req, res),
   };

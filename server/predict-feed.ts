@@ -22,6 +22,11 @@ export class PredictFeed {
     this.seed = seed;
   }
 
+  /** The room's tick counter: the next record is for this tick. */
+  get tick(): number {
+    return this.sim.tick;
+  }
+
   /** The framed record message of the record just stepped (the simulation is now after it). */
   frame(record: TickInputRecord): Uint8Array {
     const { bits, joins } = this.coder.encode(record);

@@ -7,6 +7,7 @@ import { GameServer } from '../../server/game-server.ts';
 import { silentLogger, type Logger } from '../../server/logger.ts';
 import { memoryPeerConnection } from '../../server/memory-peer.ts';
 import type { NetModeRequest } from '../../server/net-mode-policy.ts';
+import type { DurabilityOptions } from '../../server/recorder.ts';
 import { MemoryNetwork, type MemoryNetworkOptions, type MemoryTransport } from '../../sdk/index.ts';
 import { createMetrics } from '../../server/metrics.ts';
 import { createRoomFactory, type ScenarioSource } from '../../server/room-factory.ts';
@@ -45,6 +46,8 @@ export interface HarnessOptions {
   params?: Record<string, number>;
   snapshotRateHz?: number;
   recordDir?: string | null;
+  /** When recorded ticks reach the disk (default: the server's, a sync per tick before its messages leave). */
+  durability?: DurabilityOptions;
   latencyMs?: number;
   limits?: Partial<SessionLimits>;
   maxClientsPerRoom?: number;
@@ -159,7 +162,7 @@ export async function startHarness(opts: HarnessOptions): Promise<Harness> {
   const clock = new ManualClock();
   const logger = opts.logger ?? silentLogger();
   const server = await GameServer.create({
-    factory: createRoomFactory({ scenarios: scenarioList(opts.scenarios), logger, recordDir: opts.recordDir ?? null }),
+    factory: createRoomFactory({ scenarios: scenarioList(opts.scenarios), logger, recordDir: opts.recordDir ?? null, durability: opts.durability }),
     defaultScenario: opts.defaultScenario ?? opts.scenarios[0].name,
     defaultParams: opts.params,
     clock,
@@ -185,7 +188,7 @@ export async function startHarness(opts: HarnessOptions): Promise<Harness> {
       h.hashes.push(room.sim.stateHash());
     });
   };
-  for (const r of server.rooms.all()) watch(r);
+  for (const r of server.rooms.localRooms()) watch(r);
   let n = 0;
   const links = new MemoryNetwork(clock, { latencyMs: opts.latencyMs ?? 0, maxPayloadBytes: opts.maxPayloadBytes });
   links.listen(MEMORY_URL, (peer) => server.accept(memoryPeerConnection(peer)));
@@ -206,7 +209,7 @@ export async function startHarness(opts: HarnessOptions): Promise<Harness> {
       c.hello(name, room);
       await h.settle(() => c.welcome !== null || c.closed !== null);
       if (!c.welcome) throw new Error(`no welcome for ${name}: ${JSON.stringify(c.messages.slice(-2))}`);
-      for (const r of server.rooms.all()) watch(r);
+      for (const r of server.rooms.localRooms()) watch(r);
       return c;
     },
     ticks(count) {
@@ -218,7 +221,7 @@ export async function startHarness(opts: HarnessOptions): Promise<Harness> {
       return net;
     },
     room(id = 'default') {
-      const r = server.rooms.get(id);
+      const r = server.rooms.local(id);
       if (!r) throw new Error(`no room ${id}`);
       return r;
     },

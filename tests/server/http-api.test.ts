@@ -87,7 +87,7 @@ describe('http-api', () => {
     expect(await refusal(api.createRoom({ scenario: 'test-strip', roomId: 'fast', netMode: 'snapshot' }))).toEqual({
       status: 409,
       code: 'room-exists',
-      message: 'room "fast" is open with net mode predict (serving predict), not snapshot',
+      message: 'room "fast" is open in predict mode, not snapshot',
     });
     // No cost estimate for a test scenario: 'auto' stays on snapshots and the room list says why.
     const auto = await api.createRoom({ scenario: 'test-strip', roomId: 'plain' });
