@@ -257,6 +257,11 @@ export class NetClient {
     return this.connectedSession()?.prediction?.frame() ?? null;
   }
 
+  /** Stops predicting on this connection and goes back to interpolated snapshots (stats().prediction says why). */
+  stopPredicting(reason = 'stopped by the app'): void {
+    this.connectedSession()?.prediction?.fallBack(reason);
+  }
+
   /** Descriptors of the non-static bodies known now, by id. */
   dynamicDescriptors(): ReadonlyMap<number, BodyDescriptor> {
     return this.dynamic;
