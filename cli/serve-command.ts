@@ -1,5 +1,5 @@
 // `serve [--port 8080] [--host 127.0.0.1] [--scenario NAME] [--param k=v] [--snapshot-rate 30] [--record DIR]
-// [--max-clients N] [--tls-cert FILE --tls-key FILE] [--trust-proxy] [access flags] …`: runs the networked server
+// [--max-clients N] [--tls-cert FILE --tls-key FILE] [--trust-proxy] [--replay FILE] [access flags] …`: runs the networked server
 // (HTTP(S) + WebSocket on one port) until SIGINT/SIGTERM. Secrets may come from the environment (TAOS_ADMIN_TOKEN,
 // TAOS_JOIN_SECRET) so they stay out of `ps` output.
 import { readFileSync } from 'node:fs';
@@ -95,6 +95,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
       trustProxy: args.flag('trust-proxy'),
       tls: readTls(args.string('tls-cert'), args.string('tls-key')),
       clientDir: args.string('client-dir'),
+      replayFile: args.string('replay'),
       logLevel,
       ...accessOptions(args),
     },
@@ -109,7 +110,8 @@ export const serveCommand: CommandSpec = {
   details:
     'Serves the browser client at /, WebSocket play on the same port, /healthz, /metrics (Prometheus) and\n' +
     '/api/rooms. The default room runs --scenario; a client may open another room by naming a scenario as its room.\n' +
-    'With --record DIR every room writes its input log there (replay it with `replay FILE`). Logs are JSON lines on\n' +
+    'With --record DIR every room writes its input log there (replay it with `replay FILE`, or in the browser at\n' +
+    '/replay: open the file there, or serve it with --replay FILE). Logs are JSON lines on\n' +
     'stderr. SIGINT/SIGTERM: clients are told why, recordings are closed, then the process exits.\n' +
     `Access control (docs/server.md): pages from other origins are refused; ${ADMIN_TOKEN_ENV} and ${JOIN_SECRET_ENV} may\n` +
     'replace --admin-token and --join-secret (the flag wins).',
@@ -132,6 +134,7 @@ export const serveCommand: CommandSpec = {
     { name: 'tls-key', kind: 'string', valueName: 'FILE', description: "the certificate's PEM private key" },
     { name: 'trust-proxy', kind: 'boolean', description: 'take client addresses from X-Forwarded-For/-Proto (only behind a reverse proxy)' },
     { name: 'client-dir', kind: 'string', valueName: 'DIR', description: 'built browser client to serve; default dist/client' },
+    { name: 'replay', kind: 'string', valueName: 'FILE', description: 'an input log the replay viewer at /replay opens (served at /replay.taoslog)' },
     { name: 'log-level', kind: 'string', valueName: 'LEVEL', description: 'log level (trace, debug, info, warn, error, silent); default info' },
     { name: 'allowed-origins', kind: 'string', valueName: 'LIST', description: 'comma-separated origins whose pages may connect or post (plus self, loopback, *); default self,loopback' },
     { name: 'admin-token', kind: 'string', valueName: 'TOKEN', description: `bearer token required for POST/DELETE /api/... and /metrics (or ${ADMIN_TOKEN_ENV}); default none` },

@@ -20,6 +20,7 @@ import { createTcpGate, Tarpit, type TarpitOptions } from './tcp-gate.ts';
 import { createLogger, flushLogger, type Logger } from './logger.ts';
 import { createMetrics, type ServerMetrics } from './metrics.ts';
 import { createRoomFactory, type ScenarioSource } from './room-factory.ts';
+import { checkReplayLog, withReplayLog } from './replay-log.ts';
 import { createStaticHandler } from './static-files.ts';
 import { attachWsGateway } from './ws-gateway.ts';
 
@@ -50,6 +51,8 @@ export interface StartServerOptions extends AccessOptions {
   emptyRoomGraceMs?: number;
   /** Directory of the built client. Default dist/client. */
   clientDir?: string;
+  /** An input log the replay viewer (/replay) opens: served at /replay.taoslog. */
+  replayFile?: string;
   clock?: Clock;
   logger?: Logger;
   metrics?: ServerMetrics;
@@ -118,6 +121,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   const port = opts.port ?? 8080;
   const host = opts.host ?? '127.0.0.1';
   if (!Number.isInteger(port) || port < 0 || port > 65535) throw new Error(`port must be an integer in [0, 65535], got ${port}`);
+  if (opts.replayFile) await checkReplayLog(opts.replayFile);
   const access = createServerAccess(opts, metrics, logger);
   if (opts.tls) checkTls(opts.tls);
   const policy = new ConnectionPolicy(clock, { maxSockets: opts.maxConnections ?? 256, ...opts.connectionPolicy });
@@ -142,7 +146,8 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     requireSeat: access.requireSeat,
   });
 
-  const staticFiles = createStaticHandler(opts.clientDir ?? DEFAULT_CLIENT_DIR);
+  const clientFiles = createStaticHandler(opts.clientDir ?? DEFAULT_CLIENT_DIR);
+  const staticFiles = opts.replayFile ? withReplayLog(opts.replayFile, clientFiles) : clientFiles;
   const http = createHttpServer(
     createHttpApi({ game, scenarios, metrics, logger, access, staticFiles }),
     (error) => logger.error({ err: error }, 'HTTP request failed'),
