@@ -15,6 +15,8 @@ export const DEFAULT_CLIENT_OUT_DIR = join(REPO_ROOT, 'dist', 'client');
 const CLIENT_DIR = join(REPO_ROOT, 'client');
 /** Bundled entry points: source (relative to client/) → output name. */
 const ENTRIES: Readonly<Record<string, string>> = { 'app/main.ts': 'app', 'app/gallery.ts': 'gallery', 'app/replay.ts': 'replay' };
+/** The physics chunk's module: pages reach it only by a dynamic import(). */
+const PHYSICS_ENTRY = 'client/physics/index.ts';
 /** Where split chunks and the .wasm go (content-hashed names: served as immutable). */
 export const CHUNK_DIR = 'chunks';
 /** Files at the top of client/ with these endings are copied as they are. */
@@ -46,6 +48,8 @@ export interface BuildClientResult {
 export interface EngineSplit {
   /** Output scripts (relative to outDir) holding Jolt or the physics wrapper: loaded only by dynamic import. */
   engineChunks: string[];
+  /** The chunk built from client/physics/index.ts (what pages import()), relative to outDir; null if none. */
+  physicsChunk: string | null;
   /** Jolt's .wasm, relative to outDir (null when no chunk needs it). */
   wasmFile: string | null;
   /** Per entry script: the bytes a page downloads before any dynamic import (the entry and its static imports). */
@@ -151,7 +155,8 @@ export function checkEngineSplit(meta: Metafile, outDirFromRoot: string, entrySo
     }
     staticBytes[local(entryPath)] = bytes;
   }
-  return { engineChunks, wasmFile: null, staticBytes };
+  const physics = scripts.find(([, info]) => info.entryPoint === PHYSICS_ENTRY);
+  return { engineChunks, physicsChunk: physics ? local(physics[0]) : null, wasmFile: null, staticBytes };
 }
 
 /** Removes files under chunks/ that this build did not produce (older content-hashed chunks and .wasm). */
