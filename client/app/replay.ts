@@ -104,10 +104,16 @@ async function openLog(bytes: Uint8Array, source: string): Promise<void> {
   page.player = player;
   page.phase = 'verifying';
   controls.setLog(source, player);
-  const verification = await player.verify((tick) => {
-    page.verifiedTicks = tick;
-    controls.setStatus(`Checking recorded hashes… tick ${tick} / ${player.totalTicks}`, null);
-  });
+  let verification: ReplayVerification;
+  try {
+    verification = await player.verify((tick) => {
+      page.verifiedTicks = tick;
+      controls.setStatus(`Checking recorded hashes… tick ${tick} / ${player.totalTicks}`, null);
+    });
+  } catch (err) {
+    if (generation === page.generation) fail('Cannot play this log', (err as Error).message);
+    return;
+  }
   if (generation !== page.generation) return;
   page.verification = verification;
   page.verifiedTicks = player.lastTick;

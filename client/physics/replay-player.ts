@@ -55,6 +55,7 @@ export class ReplayPlayer {
   private verified: ReplayVerification | null = null;
   /** Ticks this browser can play (fewer than the log's when a record cannot be applied). */
   private playable: number;
+  private destroyed = false;
 
   private constructor(header: LogHeader, bounds: ScenarioDefinition['bounds'], logStatus: LogStatus, records: TickInputRecord[], sim: Simulation) {
     this.header = header;
@@ -116,7 +117,8 @@ export class ReplayPlayer {
 
   /**
    * Plays the whole log once, comparing every recorded hash and keeping checkpoints for seeking; yields to the page
-   * between slices and reports progress. Leaves the simulation at the last playable tick.
+   * between slices and reports progress. Leaves the simulation at the last playable tick. Rejects if the player is
+   * destroyed meanwhile (another log was opened).
    */
   async verify(onProgress?: (tick: number) => void): Promise<ReplayVerification> {
     if (this.verified) return this.verified;
@@ -134,8 +136,10 @@ export class ReplayPlayer {
       }
     };
     check();
+    onProgress?.(0);
     let sliceStart = performance.now();
     while (this.sim.tick < this.records.length) {
+      if (this.destroyed) throw new Error('the replay was closed while its hashes were being checked');
       try {
         this.sim.step(this.records[this.sim.tick]);
       } catch (err) {
@@ -223,6 +227,8 @@ export class ReplayPlayer {
 
   /** Frees the checkpoints and the simulation. */
   destroy(): void {
+    if (this.destroyed) return;
+    this.destroyed = true;
     for (const cp of this.checkpoints.values()) cp.dispose();
     this.checkpoints.clear();
     this.sim.destroy();

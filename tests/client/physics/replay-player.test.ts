@@ -85,6 +85,13 @@ describe('ReplayPlayer', () => {
     expect(player.tick).toBe(120);
   });
 
+  it('stops checking hashes with an error when the player is destroyed meanwhile', async () => {
+    const { bytes } = await session();
+    const p = await ReplayPlayer.open(bytes, 'session.taoslog');
+    const checking = p.verify(() => p.destroy());
+    await expect(checking).rejects.toThrow(/closed while its hashes were being checked/);
+  });
+
   it('refuses bytes that are not an input log, and a log of an unknown scenario, with clear errors', async () => {
     await expect(ReplayPlayer.open(new Uint8Array([1, 2, 3]), 'junk.bin')).rejects.toThrow(/junk\.bin is not a taos-physics input log/);
     const enc = new LogEncoder({ ...HEADER, scenario: 'no-such-scene' });
