@@ -86,7 +86,7 @@ async function openLog(bytes: Uint8Array, source: string): Promise<void> {
   page.source = source;
   page.phase = 'loading';
   page.renderedTick = -1;
-  hideMessage();
+  if (page.renderer) hideMessage();
   controls.setLog(source, null);
   controls.setStatus('Loading the physics engine…', null);
   let player: ReplayPlayer;
@@ -139,8 +139,11 @@ function verificationText(v: ReplayVerification, player: ReplayPlayer): string {
 function seekTo(tick: number, redraw = false): void {
   const player = page.player;
   const world = page.world;
-  if (!player || !world) return;
+  if (!player) return;
   const { jumped, events } = player.seek(tick);
+  controls.setTick(player.tick, player.lastTick);
+  // Without WebGPU there is nothing to draw: the log is still checked and the scrubber still moves the simulation.
+  if (!world) return;
   if (jumped || redraw) {
     const all = player.descriptors();
     world.reset(
@@ -157,7 +160,6 @@ function seekTo(tick: number, redraw = false): void {
     }
     world.addDescriptors(player.tick, fresh);
   }
-  controls.setTick(player.tick, player.lastTick);
 }
 
 function frame(nowMs: number): void {
@@ -237,7 +239,10 @@ async function boot(): Promise<void> {
   try {
     page.renderer = await Renderer.create(canvas);
   } catch (err) {
-    fail(err instanceof WebGpuUnavailableError ? 'WebGPU is not available' : 'The renderer failed to start', (err as Error).message);
+    // Checking a log's hashes needs only WASM: say what is missing and keep the rest of the viewer working.
+    const title = err instanceof WebGpuUnavailableError ? 'WebGPU is not available' : 'The renderer failed to start';
+    showMessage(title, `${(err as Error).message}\nLogs can still be opened and their recorded hashes checked; nothing is drawn.`, 'info');
+    await openServedLog();
     return;
   }
   page.renderer.lost.then((reason) => fail('The GPU device was lost', `${reason}. Reload the page to start again.`));

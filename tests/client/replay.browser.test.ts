@@ -1,7 +1,7 @@
 // Browser test of the replay viewer (/replay) against the real server: it opens the log `serve --replay` serves,
 // says that every recorded hash matches this browser, and scrubbing to a tick (forward, then back past a jump)
 // shows exactly the state Node computed for that tick; a log with one doctored hash is opened from the file picker
-// and the viewer names that tick as where the recorded hashes stop matching.
+// and the viewer names that tick as where the recorded hashes stop matching; without WebGPU it still checks a log.
 import { mkdtemp, rm, writeFile } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
@@ -165,6 +165,25 @@ describeBrowser('replay viewer', () => {
     const paused = (await hook(page)).tick;
     await page.waitForTimeout(300);
     expect((await hook(page)).tick).toBe(paused);
+    expect(errors).toEqual([]);
+    await page.close();
+  });
+
+  it('still checks the served log in a browser without WebGPU, and says that nothing is drawn', async () => {
+    const { page, errors } = await browser.newPage();
+    await page.addInitScript(() => {
+      Object.defineProperty(Navigator.prototype, 'gpu', { get: () => undefined, configurable: true });
+    });
+    await page.goto(new URL('/replay', server.url).href);
+    await waitForReplay(page, "t.phase === 'ready' || t.phase === 'error'");
+    const h = await hook(page);
+    expect(h.verification?.hashesChecked).toBe(rec.hashesRecorded);
+    expect(h.verification?.firstMismatchTick).toBeNull();
+    await expect(page.locator('#message h2').textContent()).resolves.toBe('WebGPU is not available');
+    await expect(page.locator('#message p').textContent()).resolves.toMatch(/recorded hashes checked; nothing is drawn/);
+    await page.locator('#scrub').fill('170');
+    await waitForReplay(page, 't.tick === 170');
+    expect((await hook(page)).stateHash).toBe(rec.ticks[170].hash);
     expect(errors).toEqual([]);
     await page.close();
   });
