@@ -4,7 +4,7 @@ import { initializePhysics, setDefaultPhysicsInitOptions } from '../../shared/ph
 
 export { getScenario, listScenarios } from '../../scenarios/index.ts';
 export { Simulation } from '../../shared/sim/simulation.ts';
-export { ReplayPlayer, type ReplayFrame, type ReplayVerification } from './replay-player.ts';
+export { ReplayPlayer, type ReplayVerification } from './replay-player.ts';
 
 /** The .wasm's file name beside this chunk; scripts/build-client.ts defines it (content-hashed). */
 declare const __TAOS_JOLT_WASM_FILE__: string;

@@ -4,11 +4,12 @@
 import { readLogBytes } from '../../server/log/log-bytes.ts';
 import type { LogHeader, LogStatus } from '../../server/log/log-format.ts';
 import { getScenario } from '../../scenarios/index.ts';
-import { BODY_STATE_STRIDE, BodyFlag } from '../../shared/physics-data/body-state.ts';
 import type { Checkpoint } from '../../shared/sim/checkpoint.ts';
 import type { ScenarioDefinition } from '../../shared/sim/scenario.ts';
 import { Simulation } from '../../shared/sim/simulation.ts';
-import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '../../shared/sim/types.ts';
+import type { SnapshotView } from '../../shared/protocol/snapshot-frame.ts';
+import type { BodyDescriptor, SimEvent, TickInputRecord } from '../../shared/sim/types.ts';
+import { viewFromBodyStates } from '../app/body-view.ts';
 
 /** Most fast checkpoints kept for seeking (they live on the 128 MB WASM heap). */
 const MAX_CHECKPOINTS = 48;
@@ -27,16 +28,6 @@ export interface ReplayVerification {
   actual: string | null;
   /** Set when a tick record could not be applied: playback stops before it. */
   failure: string | null;
-}
-
-/** The moving state of the current tick, as floats (ids ascending). */
-export interface ReplayFrame {
-  tick: number;
-  ids: Uint32Array;
-  positions: Float32Array;
-  rotations: Float32Array;
-  atRest: Uint8Array;
-  characters: CharacterState[];
 }
 
 /** A log held in memory and a simulation that plays it. Call destroy() when done (it frees the WASM world). */
@@ -207,22 +198,8 @@ export class ReplayPlayer {
   }
 
   /** The moving bodies and characters of the current tick, copied out. */
-  frame(): ReplayFrame {
-    const read = this.sim.readBodyStates();
-    const keep: number[] = [];
-    for (let i = 0; i < read.count; i++) if ((read.flags[i] & BodyFlag.Static) === 0) keep.push(i);
-    const ids = new Uint32Array(keep.length);
-    const positions = new Float32Array(keep.length * 3);
-    const rotations = new Float32Array(keep.length * 4);
-    const atRest = new Uint8Array(keep.length);
-    keep.forEach((i, k) => {
-      const s = i * BODY_STATE_STRIDE;
-      ids[k] = read.ids[i];
-      positions.set([read.states[s], read.states[s + 1], read.states[s + 2]], k * 3);
-      rotations.set([read.states[s + 3], read.states[s + 4], read.states[s + 5], read.states[s + 6]], k * 4);
-      atRest[k] = (read.flags[i] & BodyFlag.Active) === 0 ? 1 : 0;
-    });
-    return { tick: this.sim.tick, ids, positions, rotations, atRest, characters: this.sim.characters() };
+  frame(): SnapshotView {
+    return viewFromBodyStates(this.sim.tick, this.sim.readBodyStates(), this.sim.characters());
   }
 
   /** Frees the checkpoints and the simulation. */
