@@ -135,7 +135,7 @@ export class GameLoop {
     s.camera = { ...camera, widthPx: stats.widthPx, heightPx: stats.heightPx };
     s.framesRendered++;
     if (s.firstFrameMs === null && f.view) s.firstFrameMs = performance.now();
-    this.motion.frameDrawn(performance.now(), s.framesRendered, mine ? [mine.position.x, mine.position.y, mine.position.z] : null);
+    this.motion.frameDrawn(performance.now(), s.framesRendered, f.renderTick, mine ? [mine.position.x, mine.position.y, mine.position.z] : null);
     const timing = this.timer.summary();
     this.hud.refresh(nowMs, {
       room: `${this.welcome.roomId} (${this.welcome.scenario.name})`,
