@@ -3,8 +3,7 @@
 import './physics-node.ts';
 import type { AddressInfo } from 'node:net';
 import { createSecureContext } from 'node:tls';
-import { dirname, join, resolve } from 'node:path';
-import { fileURLToPath } from 'node:url';
+import { join } from 'node:path';
 import { DEFAULT_SCENARIO, listScenarios } from '../scenarios/index.ts';
 import type { Clock } from '../shared/clock.ts';
 import { MAX_CLIENT_MESSAGE_BYTES } from '../shared/protocol/index.ts';
@@ -19,13 +18,13 @@ import { ConnectionPolicy, type ConnectionPolicyOptions } from './connection-pol
 import { createTcpGate, Tarpit, type TarpitOptions } from './tcp-gate.ts';
 import { createLogger, flushLogger, type Logger } from './logger.ts';
 import { createMetrics, type ServerMetrics } from './metrics.ts';
+import { PACKAGE_ROOT } from './package-root.ts';
 import { createRoomFactory, type ScenarioSource } from './room-factory.ts';
 import { createStaticHandler } from './static-files.ts';
 import { attachWsGateway } from './ws-gateway.ts';
 
-const REPO_ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 /** Where the built browser client is served from by default. */
-export const DEFAULT_CLIENT_DIR = join(REPO_ROOT, 'dist', 'client');
+export const DEFAULT_CLIENT_DIR = join(PACKAGE_ROOT, 'dist', 'client');
 
 /** Options of startServer (the serve command's flags plus test hooks). */
 export interface StartServerOptions extends AccessOptions {
