@@ -2,7 +2,7 @@
 // [--max-clients N] [--tls-cert FILE --tls-key FILE] [--trust-proxy] [access flags] …`: runs the networked server
 // (HTTP(S) + WebSocket on one port) until SIGINT/SIGTERM. Secrets may come from the environment (TAOS_ADMIN_TOKEN,
 // TAOS_JOIN_SECRET) so they stay out of `ps` output.
-import { readFileSync } from 'node:fs';
+import { readFileSync, statSync } from 'node:fs';
 import { DEFAULT_SCENARIO } from '../scenarios/index.ts';
 import { ADMIN_TOKEN_ENV, checkAdminTokenText } from '../server/access/admin-auth.ts';
 import { parseAllowedOrigins } from '../server/access/origin-policy.ts';
@@ -73,6 +73,8 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
   const own = isScenarioPath(scenario) ? { scenarios: scenarioSource([def]) } : {};
   const params = args.pairs('param');
   checkParams(def, params);
+  const pageDir = args.string('page');
+  if (pageDir !== undefined && !statSync(pageDir, { throwIfNoEntry: false })?.isDirectory()) throw new UsageError(`--page ${pageDir} is not a folder`);
   const record = args.string('record');
   if (record === '') throw new UsageError('--record must name a directory');
   const logLevel = args.string('log-level');
@@ -100,6 +102,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
       trustProxy: args.flag('trust-proxy'),
       tls: readTls(args.string('tls-cert'), args.string('tls-key')),
       clientDir: args.string('client-dir'),
+      pageDir,
       logLevel,
       ...accessOptions(args),
     },
@@ -137,6 +140,7 @@ export const serveCommand: CommandSpec = {
     { name: 'tls-key', kind: 'string', valueName: 'FILE', description: "the certificate's PEM private key" },
     { name: 'trust-proxy', kind: 'boolean', description: 'take client addresses from X-Forwarded-For/-Proto (only behind a reverse proxy)' },
     { name: 'client-dir', kind: 'string', valueName: 'DIR', description: 'built browser client to serve; default dist/client' },
+    { name: 'page', kind: 'string', valueName: 'DIR', description: "a game's own page folder, served before the built client (/kit.js stays reachable)" },
     { name: 'log-level', kind: 'string', valueName: 'LEVEL', description: 'log level (trace, debug, info, warn, error, silent); default info' },
     { name: 'allowed-origins', kind: 'string', valueName: 'LIST', description: 'comma-separated origins whose pages may connect or post (plus self, loopback, *); default self,loopback' },
     { name: 'admin-token', kind: 'string', valueName: 'TOKEN', description: `bearer token required for POST/DELETE /api/... and /metrics (or ${ADMIN_TOKEN_ENV}); default none` },

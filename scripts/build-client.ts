@@ -11,7 +11,7 @@ const REPO_ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 export const DEFAULT_CLIENT_OUT_DIR = join(REPO_ROOT, 'dist', 'client');
 const CLIENT_DIR = join(REPO_ROOT, 'client');
 /** Bundled entry points: source (relative to client/) → output name. */
-const ENTRIES: Readonly<Record<string, string>> = { 'app/main.ts': 'app', 'app/gallery.ts': 'gallery' };
+const ENTRIES: Readonly<Record<string, string>> = { 'app/main.ts': 'app', 'app/gallery.ts': 'gallery', 'kit/index.ts': 'kit' };
 /** Files at the top of client/ with these endings are copied as they are. */
 const ASSET_PATTERN = /\.(html|css|svg|ico|png|txt)$/;
 

@@ -1,6 +1,7 @@
 // Starts the networked server on one port: HTTP routes + static client + WebSocket gateway around a GameServer whose
 // rooms run the registered scenarios; close(reason) shuts it all down in order (byes, rooms, recordings, sockets, logs).
 import './physics-node.ts';
+import type { IncomingMessage, ServerResponse } from 'node:http';
 import type { AddressInfo } from 'node:net';
 import { createSecureContext } from 'node:tls';
 import { join } from 'node:path';
@@ -49,6 +50,9 @@ export interface StartServerOptions extends AccessOptions {
   emptyRoomGraceMs?: number;
   /** Directory of the built client. Default dist/client. */
   clientDir?: string;
+  /** A game's own page folder, served before the built client (its index.html replaces the stock page; the stock
+   *  files, /kit.js among them, stay reachable where the folder has no file of that name). */
+  pageDir?: string;
   clock?: Clock;
   logger?: Logger;
   metrics?: ServerMetrics;
@@ -141,7 +145,9 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     requireSeat: access.requireSeat,
   });
 
-  const staticFiles = createStaticHandler(opts.clientDir ?? DEFAULT_CLIENT_DIR);
+  const stockFiles = createStaticHandler(opts.clientDir ?? DEFAULT_CLIENT_DIR);
+  const pageFiles = opts.pageDir === undefined ? null : createStaticHandler(opts.pageDir, true);
+  const staticFiles = pageFiles === null ? stockFiles : async (req: IncomingMessage, res: ServerResponse) => (await pageFiles(req, res)) || stockFiles(req, res);
   const http = createHttpServer(
     createHttpApi({ game, scenarios, metrics, logger, access, staticFiles }),
     (error) => logger.error({ err: error }, 'HTTP request failed'),

@@ -1,6 +1,7 @@
 // The package as a user gets it: `npm pack`, installed into an empty project outside the repository, with a
 // scenario written there against the public exports. It serves the scenario, two clients (the installed
-// `taos-physics/client`) play it, `run` gives the same hash twice, and the recording replays.
+// `taos-physics/client`) play it, `run` gives the same hash twice, and the recording replays. `init` scaffolds a
+// project that installs from the tarball, passes its own test and serves its page.
 import { execFile } from 'node:child_process';
 import { readdir, rm, writeFile } from 'node:fs/promises';
 import { join } from 'node:path';
@@ -8,6 +9,7 @@ import { promisify } from 'node:util';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { writeGameModule } from '../helpers/game-module.ts';
 import { cliIn, NODE24, packAndInstall, serveIn, stop, type PackedInstall } from './packed-package.ts';
+import { dirname } from 'node:path';
 
 const run = promisify(execFile);
 let pkg: PackedInstall;
@@ -89,4 +91,26 @@ describe('the packed package', () => {
     const types = await readdir(join(pkg.app, 'node_modules', 'taos-physics', 'dist', 'api'));
     expect(types).toEqual(expect.arrayContaining(['index.d.ts', 'client.d.ts', 'physics.d.ts', 'sim.d.ts']));
   }, 60_000);
+
+  it('init scaffolds a project that installs from the tarball, passes its own test and serves its page', async () => {
+    const started = performance.now();
+    const init = await cliIn(pkg.root, ['init', 'ball-game'], pkg.app);
+    expect(init.code, init.stderr).toBe(0);
+    const project = join(pkg.root, 'ball-game');
+    await run('npm', ['install', '--prefer-offline', '--no-audit', '--no-fund', pkg.tarball], { cwd: project });
+    const env = { ...process.env, PATH: `${dirname(NODE24)}:${process.env.PATH}` };
+    const test = await run('npm', ['test'], { cwd: project, env });
+    expect(test.stdout).toMatch(/pass 2\n\S* ?fail 0/);
+    const server = await serveIn(project, ['--scenario', './game.ts', '--page', './page']);
+    try {
+      const page = await fetch(server.url);
+      expect(await page.text()).toContain('<title>ball-game</title>');
+      console.log(`init → served page: ${((performance.now() - started) / 1000).toFixed(1)} s (npm test included)`);
+      expect((await fetch(new URL('/kit.js', server.url))).status).toBe(200);
+      const scenarios = (await (await fetch(new URL('/api/scenarios', server.url))).json()) as { scenarios: Array<{ name: string }> };
+      expect(scenarios.scenarios.map((s) => s.name)).toEqual(['ball-game']);
+    } finally {
+      await stop(server.child);
+    }
+  }, 120_000);
 });

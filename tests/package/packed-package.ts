@@ -38,10 +38,10 @@ export async function packAndInstall(): Promise<PackedInstall> {
   return { root, tarball, tarballBytes: info.size, app, installMs: performance.now() - t0 };
 }
 
-/** Runs the installed CLI (Node 24) in `cwd`; resolves with its exit code and output. */
-export function cliIn(cwd: string, args: readonly string[]): Promise<{ code: number; stdout: string; stderr: string }> {
+/** Runs the CLI installed in `installDir` (Node 24) in `cwd`; resolves with its exit code and output. */
+export function cliIn(cwd: string, args: readonly string[], installDir = cwd): Promise<{ code: number; stdout: string; stderr: string }> {
   return new Promise((resolve) => {
-    const child = spawn(NODE24, [join(cwd, 'node_modules', '.bin', 'taos-physics'), ...args], { cwd, stdio: ['ignore', 'pipe', 'pipe'] });
+    const child = spawn(NODE24, [join(installDir, 'node_modules', '.bin', 'taos-physics'), ...args], { cwd, stdio: ['ignore', 'pipe', 'pipe'] });
     let stdout = '';
     let stderr = '';
     child.stdout.on('data', (d: Buffer) => (stdout += d.toString()));
