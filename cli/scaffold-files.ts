@@ -185,8 +185,14 @@ export function scaffoldFiles(opts: ScaffoldOptions): Record<string, string> {
     engines: { node: '>=24' },
     dependencies: { 'taos-physics': opts.dependency },
   };
+  // For editors: Node runs the .ts files directly (type stripping); nothing compiles them.
+  const tsconfig = {
+    compilerOptions: { target: 'ES2023', module: 'nodenext', moduleResolution: 'nodenext', allowImportingTsExtensions: true, noEmit: true, strict: true, skipLibCheck: true, lib: ['ES2023', 'DOM'] },
+    include: ['*.ts'],
+  };
   return {
     'package.json': `${JSON.stringify(pkg, null, 2)}\n`,
+    'tsconfig.json': `${JSON.stringify(tsconfig, null, 2)}\n`,
     'game.ts': fill(SCENARIO),
     'game.test.ts': fill(TEST),
     'page/index.html': fill(PAGE),

@@ -21,7 +21,7 @@ describe('init-command', () => {
     const r = await cli('init', target);
     expect(r.code, r.stderr).toBe(0);
     expect(r.stdout).toMatch(/npm install\n\s+npm start/);
-    expect((await readdir(target, { recursive: true })).sort()).toEqual(['.gitignore', 'README.md', 'game.test.ts', 'game.ts', 'package.json', 'page', 'page/index.html']);
+    expect((await readdir(target, { recursive: true })).sort()).toEqual(['.gitignore', 'README.md', 'game.test.ts', 'game.ts', 'package.json', 'page', 'page/index.html', 'tsconfig.json']);
     const pkg = JSON.parse(await readFile(join(target, 'package.json'), 'utf8')) as Record<string, Record<string, string>>;
     expect(pkg.name).toBe('my-game');
     expect(pkg.dependencies).toEqual({ 'taos-physics': `^${packageVersion()}` });
