@@ -1,4 +1,4 @@
-// `replay FILE [--to TICK] [--json] [--hashes]`: re-simulates an input log, checks every recorded hash, and on a
+// `replay FILE [--from TICK] [--to TICK] [--json] [--hashes]`: re-simulates an input log, checks every recorded hash, and on a
 // mismatch names the first divergent tick and the first differing body (exit 1). Corrupt logs exit 1 too.
 import { ExitCode, UsageError, type CliIo, type CommandSpec } from './command.ts';
 import { ProgressBar } from './progress.ts';
@@ -60,7 +60,8 @@ export function describeReplay(r: ReplayReport): string {
   const lines: string[] = [];
   if (r.joltVersionNote) lines.push(`warning: ${r.joltVersionNote}`);
   if (r.scenarioNote) lines.push(`warning: ${r.scenarioNote}`);
-  lines.push(`ok: ${r.ticks} ticks of ${r.header.scenario} (seed ${JSON.stringify(r.header.seed)}) replayed, ${r.hashesChecked} recorded hashes match, final hash ${r.finalHash} (${r.msPerTick.toFixed(3)} ms/tick)`);
+  const from = r.startTick > 0 ? ` from the checkpoint at tick ${r.startTick}` : '';
+  lines.push(`ok: ${r.ticks} ticks${from} of ${r.header.scenario} (seed ${JSON.stringify(r.header.seed)}) replayed, ${r.hashesChecked} recorded hashes match, final hash ${r.finalHash} (${r.msPerTick.toFixed(3)} ms/tick)`);
   if (r.log === 'truncated') lines.push(`note: the log ends in a partial record (${r.droppedBytes} bytes, a crash while writing): the whole records before it were replayed`);
   if (r.log === 'unterminated') lines.push('note: the log has no end record (the recorder did not close it: a crash, or still recording)');
   return lines.join('\n') + '\n';
@@ -73,6 +74,7 @@ export function replayJson(r: ReplayReport, withHashes: boolean): Record<string,
     scenario: r.header.scenario,
     status: r.status,
     log: r.log,
+    startTick: r.startTick,
     ticks: r.ticks,
     hashesChecked: r.hashesChecked,
     finalHash: r.finalHash,
@@ -89,6 +91,9 @@ export function replayJson(r: ReplayReport, withHashes: boolean): Record<string,
 async function run(args: ParsedArgs, io: CliIo): Promise<number> {
   const file = args.positionals[0];
   const toTick = args.number('to');
+  const fromTick = args.number('from');
+  if (fromTick !== undefined && args.flag('hashes')) throw new UsageError('--from and --hashes do not go together (hashes start at tick 0)');
+  if (fromTick !== undefined && toTick !== undefined && toTick < fromTick) throw new UsageError(`--to ${toTick} is before --from ${fromTick}`);
   const json = args.flag('json');
   const bar = new ProgressBar(io, 'replay');
   const scenarioArg = args.string('scenario');
@@ -98,6 +103,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
       ...(scenario !== undefined ? { scenario } : {}),
       force: args.flag('force'),
       ...(toTick !== undefined ? { toTick } : {}),
+      ...(fromTick !== undefined ? { fromTick } : {}),
       collectHashes: args.flag('hashes'),
       onProgress: (f, tick) => bar.update(f, `tick ${tick}`),
     }),
@@ -108,7 +114,8 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
     const text = describeReplay(report);
     if (report.status === 'ok') io.stdout(text);
     else io.stderr(text);
-    if (toTick !== undefined && report.ticks < toTick) io.stderr(`note: --to ${toTick}, but the log holds only ${report.ticks} ticks\n`);
+    if (fromTick !== undefined) io.stderr(report.startTick > 0 ? `note: started from the checkpoint at tick ${report.startTick} (--from ${fromTick})\n` : `note: no checkpoint at or before tick ${fromTick}: replayed from tick 0\n`);
+    if (toTick !== undefined && report.startTick + report.ticks < toTick) io.stderr(`note: --to ${toTick}, but the log holds only ${report.startTick + report.ticks} ticks\n`);
   }
   return report.status === 'ok' ? ExitCode.Ok : ExitCode.Failed;
 }
@@ -121,9 +128,10 @@ export const replayCommand: CommandSpec = {
     'Stops at the first hash mismatch, names the divergent tick and the first differing body (from the next recorded\n' +
     'checkpoint), and exits 1; a corrupt log also exits 1 after replaying everything before the damage. A truncated\n' +
     'log (crash while recording) replays its whole records and exits 0. Progress goes to stderr when it is a terminal.',
-  positionals: [{ name: 'FILE', description: 'input log (.tlog) to replay', required: true }],
+  positionals: [{ name: 'FILE', description: 'input log (.taoslog) to replay', required: true }],
   flags: [
     { name: 'to', kind: 'int', valueName: 'TICK', description: 'stop once TICK ticks are applied', min: 0 },
+    { name: 'from', kind: 'int', valueName: 'TICK', description: 'start from the last recorded checkpoint at or before TICK (hashes before it are not checked)', min: 0 },
     { name: 'json', kind: 'boolean', description: 'print one JSON object on stdout' },
     { name: 'hashes', kind: 'boolean', description: 'with --json: include the state hash at every tick (used by verify)' },
     ...SCENARIO_MODULE_FLAGS,

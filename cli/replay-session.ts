@@ -25,6 +25,8 @@ export interface ReplayOptions {
   force?: boolean;
   /** Stop once the simulation's tick counter reaches this (default: the whole log). */
   toTick?: number;
+  /** Start from the last recorded checkpoint at or before this tick counter instead of tick 0 (none: from 0). */
+  fromTick?: number;
   /** Keep the state hash at every tick counter 0…n (for verify). */
   collectHashes?: boolean;
   /** Called now and then with the fraction of the file read and the tick counter. */
@@ -73,6 +75,25 @@ export interface ReplayReport {
   scenarioNote?: string;
   /** State hash at tick counter 0…ticks (collectHashes only). */
   hashes?: string[];
+  /** The tick counter the replay started at (a checkpoint's with fromTick, else 0). */
+  startTick: number;
+}
+
+/** The record index and tick of the last checkpoint at or before `fromTick` (null when there is none). */
+export async function findCheckpoint(file: string, fromTick: number): Promise<{ index: number; tick: number } | null> {
+  const reader = await LogReader.open(file);
+  let best: { index: number; tick: number } | null = null;
+  try {
+    for await (const e of reader.entries()) {
+      if (e.type === 'checkpoint' && e.tick <= fromTick) best = { index: e.index, tick: e.tick };
+      if (e.type === 'tick' && e.record.tick >= fromTick) break; // later checkpoints are past fromTick
+    }
+  } catch (err) {
+    if (!(err instanceof LogCorruptError)) throw err; // the replay itself reports the damage
+  } finally {
+    await reader.close();
+  }
+  return best;
 }
 
 /**
@@ -99,6 +120,8 @@ export async function scenarioForLog(file: string, header: LogHeader, opts: Pick
 /** Replays one log file. Throws for an unreadable file or header (missing, not a log, unknown scenario). */
 export async function replayLog(file: string, opts: ReplayOptions = {}): Promise<ReplayReport> {
   const fileBytes = (await stat(file)).size;
+  if (opts.fromTick !== undefined && opts.collectHashes) throw new Error('replayLog: fromTick and collectHashes do not go together');
+  const start = opts.fromTick !== undefined ? await findCheckpoint(file, opts.fromTick) : null;
   const reader = await LogReader.open(file);
   let sim: Simulation | null = null;
   try {
@@ -111,7 +134,9 @@ export async function replayLog(file: string, opts: ReplayOptions = {}): Promise
       throw new Error(`${file} cannot be replayed by this build: ${(err as Error).message}`, { cause: err });
     }
     const s: Simulation = sim;
-    const report: ReplayReport = { file, header, status: 'ok', log: 'complete', ticks: 0, hashesChecked: 0, finalHash: '', msPerTick: 0, droppedBytes: 0 };
+    const report: ReplayReport = { file, header, status: 'ok', log: 'complete', ticks: 0, hashesChecked: 0, finalHash: '', msPerTick: 0, droppedBytes: 0, startTick: 0 };
+    let skipBefore = start?.index ?? 0;
+    let skippedHash: { tick: number; hash: string; index: number; offset: number } | null = null;
     const jolt = installedJoltVersion();
     if (header.joltVersion !== jolt) report.joltVersionNote = `recorded with jolt-physics ${header.joltVersion}, replaying with ${jolt}: hashes may differ`;
     if (note) report.scenarioNote = note;
@@ -122,6 +147,30 @@ export async function replayLog(file: string, opts: ReplayOptions = {}): Promise
     const entries = reader.entries();
     try {
       for await (const e of entries) {
+        if (e.index < skipBefore) {
+          if (e.type === 'hash') skippedHash = { tick: e.tick, hash: e.hash, index: e.index, offset: e.offset };
+          continue;
+        }
+        if (e.type === 'checkpoint' && e.index === skipBefore && start !== null) {
+          skipBefore = 0;
+          try {
+            s.restoreCheckpointBytes(e.bytes);
+          } catch (err) {
+            throw new LogCorruptError(e.index, e.offset, `the checkpoint at tick ${e.tick} cannot be restored: ${err instanceof Error ? err.message : 'it threw'}`);
+          }
+          report.startTick = e.tick;
+          // The hash recorded at the checkpoint's tick (written just before it) checks the restored state.
+          if (skippedHash !== null && skippedHash.tick === e.tick) {
+            report.hashesChecked++;
+            const actual = s.stateHash();
+            if (actual !== skippedHash.hash) {
+              report.status = 'diverged';
+              report.divergence = { tick: e.tick, expected: skippedHash.hash, actual, recordIndex: skippedHash.index, byteOffset: skippedHash.offset, state: null, stateNote: 'the recorded checkpoint does not restore to the state hash recorded with it' };
+              break;
+            }
+          }
+          continue;
+        }
         if (e.type === 'tick') {
           if (s.tick >= toTick) break;
           const t0 = performance.now();

@@ -1,5 +1,7 @@
 // createServer: the package's way to serve your own game in code. Takes the scenarios to offer (defineScenario
 // results, module paths, or built-in names), checks them, and starts the server (start-server.ts) on them.
+import { resolve } from 'node:path';
+import { pathToFileURL } from 'node:url';
 import { getScenario, listScenarios } from '../scenarios/index.ts';
 import type { ScenarioDefinition } from '../shared/sim/scenario.ts';
 import type { ScenarioSource } from './room-factory.ts';
@@ -44,5 +46,9 @@ export async function createServer(opts: CreateServerOptions = {}): Promise<Runn
   if (entries !== undefined && (!Array.isArray(entries) || entries.length === 0)) throw new Error('createServer: scenarios must be a non-empty array');
   const defs = entries === undefined ? [...listScenarios()] : await resolveScenarioEntries(entries);
   const source = scenarioSource(defs);
-  return startServer({ ...rest, scenarios: source, scenario: opts.scenario ?? (entries === undefined ? undefined : defs[0].name) });
+  const modules = (entries ?? []).filter((e): e is string => typeof e === 'string' && isScenarioPath(e)).map((e) => pathToFileURL(resolve(e)).href);
+  if ((rest.roomWorkers ?? 0) > 0 && (entries ?? []).some((e) => typeof e !== 'string')) {
+    throw new Error('createServer: rooms in worker threads load scenarios from module files; give the scenarios as module paths (or built-in names), or set roomWorkers: 0');
+  }
+  return startServer({ ...rest, workerScenarioModules: [...(rest.workerScenarioModules ?? []), ...modules], scenarios: source, scenario: opts.scenario ?? (entries === undefined ? undefined : defs[0].name) });
 }

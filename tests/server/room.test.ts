@@ -262,4 +262,20 @@ describe('Room', () => {
     expect(room.heldCount).toBe(0);
     expect(room.reattach(99, c)).toBeNull();
   });
+
+  it('holds each tick\'s events and frame until its recorder releases the tick, then sends them in tick order', () => {
+    const held: Array<[number, () => void]> = [];
+    const recorder = { append: () => {}, afterStep: () => {}, close: async () => {}, release: (tick: number, send: () => void) => held.push([tick, send]) };
+    const { room, clock } = makeRoom({ snapshotRateHz: 60, recorder });
+    const m = new Member();
+    room.join(m, 'a');
+    clock.advance(2 * TICK_MS); // ticks 0..2
+    expect(held.map(([t]) => t)).toEqual([0, 1, 2]);
+    expect(m.events).toEqual([]);
+    expect(m.frames).toEqual([]);
+    held.splice(0, 2).forEach(([, send]) => send());
+    expect(m.events.map(([t]) => t)).toEqual([0]);
+    expect(m.frames.map((f) => f.tick)).toEqual([0, 1]);
+    expect(m.frames[0].bodies.count).toBe(1);
+  });
 });

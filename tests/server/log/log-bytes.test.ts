@@ -84,12 +84,12 @@ describe('log-bytes', () => {
     expect(() => readLogBytes(new TextEncoder().encode('{"not":"a log"}'), 'x.json')).toThrow(new LogFormatError('x.json is not a taos-physics input log (bad magic bytes)'));
     const v3 = log.slice();
     v3[8] = 3;
-    expect(() => readLogBytes(v3, 'a.tlog')).toThrow('a.tlog has input log format version 3; this build reads versions 1 and 2');
-    expect(() => readLogBytes(new Uint8Array(0), 'e.tlog')).toThrow('e.tlog is empty');
-    expect(() => readLogBytes(log.subarray(0, 6), 'p.tlog')).toThrow(/truncated inside its 12-byte prelude/);
-    expect(() => readLogBytes(log.subarray(0, 20), 'h.tlog')).toThrow('h.tlog is truncated inside its header record');
+    expect(() => readLogBytes(v3, 'a.taoslog')).toThrow('a.taoslog has input log format version 3; this build reads versions 1 and 2');
+    expect(() => readLogBytes(new Uint8Array(0), 'e.taoslog')).toThrow('e.taoslog is empty');
+    expect(() => readLogBytes(log.subarray(0, 6), 'p.taoslog')).toThrow(/truncated inside its 12-byte prelude/);
+    expect(() => readLogBytes(log.subarray(0, 20), 'h.taoslog')).toThrow('h.taoslog is truncated inside its header record');
     const badHeader = log.slice();
     badHeader[20] ^= 0xff;
-    expect(() => readLogBytes(badHeader, 'c.tlog')).toThrow(/c.tlog: no valid header: bad CRC in header record/);
+    expect(() => readLogBytes(badHeader, 'c.taoslog')).toThrow(/c.taoslog: no valid header: bad CRC in header record/);
   });
 });
