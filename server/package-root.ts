@@ -1,7 +1,7 @@
 // Where this package's files are: the folder holding its package.json, found from this module whether it runs from
 // the repository's sources (server/) or from an installed package (dist/server/). Node only.
 import { existsSync, readFileSync } from 'node:fs';
-import { dirname, join } from 'node:path';
+import { dirname, extname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 const PACKAGE_NAME = 'taos-physics';
@@ -20,4 +20,12 @@ export const PACKAGE_ROOT = findRoot(dirname(fileURLToPath(import.meta.url)));
 /** The package's version (package.json). */
 export function packageVersion(): string {
   return (JSON.parse(readFileSync(join(PACKAGE_ROOT, 'package.json'), 'utf8')) as { version: string }).version;
+}
+
+/**
+ * The URL of a module beside `moduleUrl` (a worker's entry file), with the caller's own extension: `.ts` when running
+ * from the sources, `.js` from the built package.
+ */
+export function siblingModuleUrl(moduleUrl: string, baseName: string): URL {
+  return new URL(`./${baseName}${extname(fileURLToPath(moduleUrl))}`, moduleUrl);
 }
