@@ -31,6 +31,18 @@ describe('init-command', () => {
     expect(await readFile(join(target, 'README.md'), 'utf8')).toMatch(/npm install\nnpm start/);
   });
 
+  it('points the dependency at a tarball path relative to the project, or at a given range', async () => {
+    await writeFile(join(dir, 'taos-physics-9.9.9.tgz'), 'not really a tarball');
+    expect((await cli('init', join(dir, 'from-tarball'), '--dependency', join(dir, 'taos-physics-9.9.9.tgz'))).code).toBe(0);
+    const pkg = JSON.parse(await readFile(join(dir, 'from-tarball', 'package.json'), 'utf8')) as { dependencies: Record<string, string> };
+    expect(pkg.dependencies['taos-physics']).toBe('file:../taos-physics-9.9.9.tgz');
+    expect((await cli('init', join(dir, 'ranged'), '--dependency', '~0.1.2')).code).toBe(0);
+    expect((JSON.parse(await readFile(join(dir, 'ranged', 'package.json'), 'utf8')) as { dependencies: Record<string, string> }).dependencies['taos-physics']).toBe('~0.1.2');
+    const missing = await cli('init', join(dir, 'nowhere'), '--dependency', join(dir, 'missing.tgz'));
+    expect(missing.code).toBe(2);
+    expect(missing.stderr).toContain('no such file or folder');
+  });
+
   it('refuses a folder that is not empty unless --force, and a name npm would refuse', async () => {
     const used = join(dir, 'used');
     await mkdir(used);

@@ -8,7 +8,7 @@ import { join } from 'node:path';
 import { promisify } from 'node:util';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { writeGameModule } from '../helpers/game-module.ts';
-import { cliIn, NODE24, packAndInstall, serveIn, stop, type PackedInstall } from './packed-package.ts';
+import { cliIn, NODE24, npmStartIn, packAndInstall, serveIn, stop, type PackedInstall } from './packed-package.ts';
 import { dirname } from 'node:path';
 
 const run = promisify(execFile);
@@ -92,16 +92,16 @@ describe('the packed package', () => {
     expect(types).toEqual(expect.arrayContaining(['index.d.ts', 'client.d.ts', 'physics.d.ts', 'sim.d.ts']));
   }, 60_000);
 
-  it('init scaffolds a project that installs from the tarball, passes its own test and serves its page', async () => {
+  it('init scaffolds a project that installs from the tarball (npm install), passes its own test and serves its page (npm start)', async () => {
     const started = performance.now();
-    const init = await cliIn(pkg.root, ['init', 'ball-game'], pkg.app);
+    const init = await cliIn(pkg.root, ['init', 'ball-game', '--dependency', pkg.tarball], pkg.app);
     expect(init.code, init.stderr).toBe(0);
     const project = join(pkg.root, 'ball-game');
-    await run('npm', ['install', '--prefer-offline', '--no-audit', '--no-fund', pkg.tarball], { cwd: project });
+    await run('npm', ['install', '--prefer-offline', '--no-audit', '--no-fund'], { cwd: project });
     const env = { ...process.env, PATH: `${dirname(NODE24)}:${process.env.PATH}` };
     const test = await run('npm', ['test'], { cwd: project, env });
     expect(test.stdout).toMatch(/pass 2\n\S* ?fail 0/);
-    const server = await serveIn(project, ['--scenario', './game.ts', '--page', './page']);
+    const server = await npmStartIn(project);
     try {
       const page = await fetch(server.url);
       expect(await page.text()).toContain('<title>ball-game</title>');
@@ -110,7 +110,7 @@ describe('the packed package', () => {
       const scenarios = (await (await fetch(new URL('/api/scenarios', server.url))).json()) as { scenarios: Array<{ name: string }> };
       expect(scenarios.scenarios.map((s) => s.name)).toEqual(['ball-game']);
     } finally {
-      await stop(server.child);
+      await stop(server.child, true);
     }
   }, 120_000);
 });

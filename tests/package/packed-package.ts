@@ -3,7 +3,7 @@
 import { execFile, spawn, type ChildProcess } from 'node:child_process';
 import { mkdir, mkdtemp, writeFile } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
-import { join } from 'node:path';
+import { dirname, join } from 'node:path';
 import { promisify } from 'node:util';
 
 const run = promisify(execFile);
@@ -51,8 +51,25 @@ export function cliIn(cwd: string, args: readonly string[], installDir = cwd): P
 }
 
 /** Starts `taos-physics serve …` from the install and waits (at most 30 s) for the URL it prints. */
-export async function serveIn(cwd: string, args: readonly string[]): Promise<{ child: ChildProcess; url: string; wsUrl: string; output: () => string }> {
-  const child = spawn(NODE24, [join(cwd, 'node_modules', '.bin', 'taos-physics'), 'serve', '--port', '0', ...args], { cwd, stdio: ['ignore', 'pipe', 'pipe'] });
+export function serveIn(cwd: string, args: readonly string[]): Promise<RunningServe> {
+  return waitForUrl(spawn(NODE24, [join(cwd, 'node_modules', '.bin', 'taos-physics'), 'serve', '--port', '0', ...args], { cwd, stdio: ['ignore', 'pipe', 'pipe'] }));
+}
+
+/** Runs `npm start` in `cwd` (its own process group, Node 24 first on PATH, PORT=0) and waits for the URL. */
+export function npmStartIn(cwd: string): Promise<RunningServe> {
+  const env = { ...process.env, PATH: `${dirname(NODE24)}:${process.env.PATH}`, PORT: '0' };
+  return waitForUrl(spawn('npm', ['start'], { cwd, env, detached: true, stdio: ['ignore', 'pipe', 'pipe'] }), true);
+}
+
+/** A server process and where it listens. */
+export interface RunningServe {
+  child: ChildProcess;
+  url: string;
+  wsUrl: string;
+  output: () => string;
+}
+
+async function waitForUrl(child: ChildProcess, group = false): Promise<RunningServe> {
   let stdout = '';
   let stderr = '';
   child.stdout!.on('data', (d: Buffer) => (stdout += d.toString()));
@@ -60,7 +77,8 @@ export async function serveIn(cwd: string, args: readonly string[]): Promise<{ c
   const deadline = performance.now() + 30_000;
   while (!/ws:\/\/\S+\//.test(stdout)) {
     if (performance.now() > deadline || child.exitCode !== null) {
-      child.kill('SIGKILL');
+      if (group && child.pid !== undefined && child.exitCode === null) process.kill(-child.pid, 'SIGKILL');
+      else child.kill('SIGKILL');
       throw new Error(`serve printed no URL; stderr: ${stderr}`);
     }
     await new Promise((r) => setTimeout(r, 50));
@@ -68,10 +86,11 @@ export async function serveIn(cwd: string, args: readonly string[]): Promise<{ c
   return { child, url: /(http:\/\/\S+\/)/.exec(stdout)![1], wsUrl: /(ws:\/\/\S+\/)/.exec(stdout)![1], output: () => stdout + stderr };
 }
 
-/** Sends SIGTERM and waits for the exit code. */
-export function stop(child: ChildProcess): Promise<number | null> {
+/** Sends SIGTERM (to its process group when it leads one: npm and the server it started) and waits for the exit code. */
+export function stop(child: ChildProcess, group = false): Promise<number | null> {
   if (child.exitCode !== null) return Promise.resolve(child.exitCode);
   const exited = new Promise<number | null>((resolve) => child.once('exit', (code) => resolve(code)));
-  child.kill('SIGTERM');
+  if (group && child.pid !== undefined) process.kill(-child.pid, 'SIGTERM');
+  else child.kill('SIGTERM');
   return exited;
 }
