@@ -1,4 +1,3 @@
-// The `taos-physics/physics` entry: the Jolt wrapper (worlds, bodies, shapes, characters, constraints, queries).
-// In Node, loadJoltNode() loads the package's .wasm; browsers pass wasmUrl to loadJolt.
+// The `taos-physics/physics` entry in browsers: the Jolt wrapper (worlds, bodies, shapes, characters, constraints,
+// queries). Load Jolt with loadJolt({ wasmUrl }). Node resolves the entry to physics-node.ts instead.
 export * from '../shared/physics/index.ts';
-export { joltWasmPath, loadJoltNode } from '../server/physics-node.ts';

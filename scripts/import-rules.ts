@@ -20,6 +20,7 @@ const AREA_PREFIXES = [
   ['scripts/', 'scripts'],
   ['bin/', 'bin'],
   ['api/client.ts', 'api/client'],
+  ['api/physics.ts', 'api/physics'],
   ['api/', 'api'],
 ] as const;
 
@@ -56,8 +57,10 @@ export const MAY_IMPORT: Readonly<Record<Area, readonly Area[] | '*'>> = {
   cli: ['server', 'sdk', 'scenarios', 'shared/physics', 'shared/sim', 'shared/protocol', ...SHARED_BASE],
   bin: ['cli'],
   // The package's entry points: each re-exports a public surface. `taos-physics/client` is the SDK alone.
-  api: ['server', 'cli', 'sdk', 'scenarios', 'shared/physics', 'shared/sim', 'shared/protocol', ...SHARED_BASE],
+  api: ['api/physics', 'server', 'cli', 'sdk', 'scenarios', 'shared/physics', 'shared/sim', 'shared/protocol', ...SHARED_BASE],
   'api/client': ['sdk', 'shared/protocol', 'shared/sim', ...SHARED_BASE],
+  // `taos-physics/physics` for browsers: the wrapper alone (Node gets api/physics-node.ts).
+  'api/physics': ['shared/physics', ...SHARED_BASE],
   bench: '*',
   tests: '*',
   scripts: '*',
@@ -74,6 +77,7 @@ export const MAY_USE_PACKAGES: Readonly<Partial<Record<Area, readonly string[]>>
   sdk: [],
   client: [],
   'api/client': [],
+  'api/physics': [],
 };
 
 /** Packages only these areas may import, wherever the importer is (tests and tools included). */

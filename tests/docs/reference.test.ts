@@ -6,7 +6,7 @@ import { describe, expect, it } from 'vitest';
 const ENTRIES = [
   { heading: '## `taos-physics`\n', module: '../../api/index.ts' },
   { heading: '## `taos-physics/client`\n', module: '../../api/client.ts' },
-  { heading: '## `taos-physics/physics`\n', module: '../../api/physics.ts' },
+  { heading: '## `taos-physics/physics`\n', module: '../../api/physics-node.ts' },
   { heading: '## `taos-physics/sim`\n', module: '../../api/sim.ts' },
 ] as const;
 

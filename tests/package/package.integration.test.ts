@@ -89,7 +89,19 @@ describe('the packed package', () => {
     const out = await run(NODE24, ['--input-type=module', '-e', script], { cwd: pkg.app });
     expect(JSON.parse(out.stdout)).toEqual({ main: 'functionfunction', client: 'function', physics: 'function', sim: 'function', tick: 30, internal: 'ERR_PACKAGE_PATH_NOT_EXPORTED' });
     const types = await readdir(join(pkg.app, 'node_modules', 'taos-physics', 'dist', 'api'));
-    expect(types).toEqual(expect.arrayContaining(['index.d.ts', 'client.d.ts', 'physics.d.ts', 'sim.d.ts']));
+    expect(types).toEqual(expect.arrayContaining(['index.d.ts', 'client.d.ts', 'physics.d.ts', 'physics-node.d.ts', 'sim.d.ts']));
+  }, 60_000);
+
+  it("bundles the client and physics entries for browsers without the package's Node code", async () => {
+    // Jolt's own glue imports node:module on its Node path only: bundlers leave it external (docs/reference.md).
+    const script = `
+      import { build } from 'esbuild';
+      const r = await build({ stdin: { contents: "export { connect } from 'taos-physics/client'; export { PhysicsWorld } from 'taos-physics/physics';", resolveDir: process.cwd() }, bundle: true, platform: 'browser', format: 'esm', external: ['node:module'], write: false, metafile: true, logLevel: 'silent' });
+      console.log(JSON.stringify(Object.keys(r.metafile.inputs).filter((p) => p.includes('taos-physics/dist/'))));`;
+    const out = await run(NODE24, ['--input-type=module', '-e', script], { cwd: pkg.app });
+    const inputs = JSON.parse(out.stdout) as string[];
+    expect(inputs).toEqual(expect.arrayContaining([expect.stringContaining('dist/api/client.js'), expect.stringContaining('dist/api/physics.js')]));
+    expect(inputs.filter((p) => p.includes('/server/') || p.includes('physics-node'))).toEqual([]);
   }, 60_000);
 
   it('init scaffolds a project that installs from the tarball (npm install), passes its own test and serves its page (npm start)', async () => {
