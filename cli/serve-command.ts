@@ -2,7 +2,7 @@
 // [--max-clients N] [--tls-cert FILE --tls-key FILE] [--trust-proxy] [--replay FILE] [access flags] …`: runs the networked server
 // (HTTP(S) + WebSocket on one port) until SIGINT/SIGTERM. Secrets may come from the environment (TAOS_ADMIN_TOKEN,
 // TAOS_JOIN_SECRET) so they stay out of `ps` output.
-import { readFileSync } from 'node:fs';
+import { readFileSync, statSync } from 'node:fs';
 import { availableParallelism } from 'node:os';
 import { DEFAULT_SCENARIO } from '../scenarios/index.ts';
 import { ADMIN_TOKEN_ENV, checkAdminTokenText } from '../server/access/admin-auth.ts';
@@ -105,6 +105,8 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
   const own = isScenarioPath(scenario) ? { scenarios: scenarioSource([def]), workerScenarioModules: [pathToFileURL(resolvePath(scenario)).href] } : {};
   const params = args.pairs('param');
   checkParams(def, params);
+  const pageDir = args.string('page');
+  if (pageDir !== undefined && !statSync(pageDir, { throwIfNoEntry: false })?.isDirectory()) throw new UsageError(`--page ${pageDir} is not a folder`);
   const record = args.string('record');
   if (record === '') throw new UsageError('--record must name a directory');
   const logLevel = args.string('log-level');
@@ -137,6 +139,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
       tls: readTls(args.string('tls-cert'), args.string('tls-key')),
       clientDir: args.string('client-dir'),
       replayFile: args.string('replay'),
+      pageDir,
       logLevel,
       logFormat,
       ...recordingOptions(args),
@@ -188,6 +191,7 @@ export const serveCommand: CommandSpec = {
     { name: 'trust-proxy', kind: 'boolean', description: 'take client addresses from X-Forwarded-For/-Proto (only behind a reverse proxy)' },
     { name: 'client-dir', kind: 'string', valueName: 'DIR', description: 'built browser client to serve; default dist/client' },
     { name: 'replay', kind: 'string', valueName: 'FILE', description: 'an input log the replay viewer at /replay opens (served at /replay.taoslog)' },
+    { name: 'page', kind: 'string', valueName: 'DIR', description: "a game's own page folder, served before the built client (/kit.js stays reachable)" },
     { name: 'log-level', kind: 'string', valueName: 'LEVEL', description: 'log level (trace, debug, info, warn, error, silent); default info' },
     { name: 'log-format', kind: 'string', valueName: 'FORMAT', description: 'log lines on stderr: pretty (time, level, message, fields) or json; default pretty on a terminal, else json' },
     { name: 'allowed-origins', kind: 'string', valueName: 'LIST', description: 'comma-separated origins whose pages may connect or post (plus self, loopback, *); default self,loopback' },
