@@ -79,7 +79,7 @@ export class SnapshotFanOut {
    */
   snapshotFor(encoder: SnapshotEncoder, frame: WorldFrame, heldStateVersion = -1): MemberSnapshot {
     const work = this.frameWork(frame);
-    const encoded = encoder.encode(work.quantized, (id) => this.source.describe(id), work.shared);
+    const encoded = encoder.encode(work.quantized, (id) => work.frame.descriptors?.get(id) ?? this.source.describe(id), work.shared);
     // The whole game state rides along when it changed since the member's last snapshot (the link is ordered and
     // reliable, so what a member got last is what it holds).
     const stateVersion = this.source.gameStateVersion?.() ?? null;

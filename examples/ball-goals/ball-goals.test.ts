@@ -6,13 +6,9 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { afterAll, describe, expect, it } from 'vitest';
-import { replayLog } from '../../cli/replay-session.ts';
-import { connect, type NetClient } from '../../sdk/index.ts';
-import { createServer } from '../../server/create-server.ts';
-import '../../server/physics-node.ts';
-import { NEUTRAL_INPUT } from '../../shared/sim/input.ts';
-import { Simulation } from '../../shared/sim/simulation.ts';
-import type { SimEvent, TickInputRecord } from '../../shared/sim/types.ts';
+import { connect, type NetClient } from '../../api/client.ts';
+import { createServer } from '../../api/index.ts';
+import { NEUTRAL_INPUT, replayLog, Simulation, type SimEvent, type TickInputRecord } from '../../api/sim.ts';
 import { KICK_OFF, scenario } from './game.ts';
 
 const tmp = mkdtempSync(join(tmpdir(), 'ball-goals-'));

@@ -1,8 +1,6 @@
 // Ball Goals: players push (and kick) a ball into the other team's goal. A complete game on the public API: a
 // scenario with a custom "kick" button, a replicated score, goals that are sensor volumes and a "resetBall" message.
-import { CollisionLayer } from '../../shared/physics/index.ts';
-import { defineScenario } from '../../shared/sim/define-scenario.ts';
-import { detCos, detSin } from '../../shared/sim/det-math.ts';
+import { CollisionLayer, defineScenario, detCos, detSin } from '../../api/index.ts';
 
 /** Where the ball starts and goes back to after a goal. */
 export const KICK_OFF = { x: 0, y: 0.4, z: 0 } as const;

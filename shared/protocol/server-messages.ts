@@ -4,6 +4,7 @@ import type { GameStateValue } from '../sim/game-state.ts';
 import type { BodyDescriptor, SimEvent } from '../sim/types.ts';
 import type { ByeReason, ErrorCode } from './opcodes.ts';
 import type { GameSchemaInfo } from './game-schema-codec.ts';
+import type { CheckpointMessage, NetMode, RecordMessage } from './predict-messages.ts';
 import type { Bounds, SnapshotFormatSpec } from './quantization.ts';
 
 /** What a client needs to know about the room's scenario. */
@@ -41,6 +42,8 @@ export interface WelcomeMessage {
   resumeGraceMs: number;
   /** True when this welcome handed back a held player (same player id and character) instead of a new one. */
   resumed: boolean;
+  /** How the room serves its members; in predict mode a checkpoint follows the welcome and records every tick. */
+  netMode: NetMode;
 }
 
 /** Answer to ping. */
@@ -86,4 +89,4 @@ export interface ServerByeMessage {
 }
 
 /** Every server→client message. */
-export type ServerMessage = WelcomeMessage | PongMessage | SnapshotMessage | EventsMessage | ErrorMessage | ServerByeMessage;
+export type ServerMessage = WelcomeMessage | PongMessage | SnapshotMessage | EventsMessage | ErrorMessage | ServerByeMessage | CheckpointMessage | RecordMessage;

@@ -1,7 +1,7 @@
 // Tests of the game API's wire form: game input values in input commands (checked like every client field) and the
 // welcome's game schema (round trip, and a clear refusal of a malformed one).
 import { describe, expect, it } from 'vitest';
-import { decodeClientMessage, decodeServerMessage, encodeClientMessage, encodeServerMessage, packValue, unpackFrame } from '../../../shared/protocol/index.ts';
+import { ClientOpcode, decodeClientMessage, decodeServerMessage, encodeClientMessage, encodeServerMessage, packValue, unpackFrame } from '../../../shared/protocol/index.ts';
 import { NEUTRAL_INPUT } from '../../../shared/sim/input.ts';
 import { sampleWelcome } from './sample-messages.ts';
 
@@ -94,10 +94,10 @@ describe('game-schema-codec', () => {
       const r = decodeClientMessage(packValue(frame));
       return r.ok ? 'ok' : `${r.code}: ${r.error}`;
     };
-    expect(refuse([6, 'pick team', []])).toBe('bad-message: game.name must be an identifier of 1-32 characters, got "pick team"');
-    expect(refuse([6, 'pick', [0.5]])).toBe('bad-message: game.payload[0] must be an integer within ±1000000, got 0.5');
-    expect(refuse([6, 'pick', new Array(9).fill(0)])).toBe('bad-message: game.payload must be an array of at most 8 integers');
-    expect(refuse([6, 'pick'])).toBe('bad-message: game must have 2 field(s), got 1');
+    expect(refuse([ClientOpcode.GameMessage, 'pick team', []])).toBe('bad-message: game.name must be an identifier of 1-32 characters, got "pick team"');
+    expect(refuse([ClientOpcode.GameMessage, 'pick', [0.5]])).toBe('bad-message: game.payload[0] must be an integer within ±1000000, got 0.5');
+    expect(refuse([ClientOpcode.GameMessage, 'pick', new Array(9).fill(0)])).toBe('bad-message: game.payload must be an array of at most 8 integers');
+    expect(refuse([ClientOpcode.GameMessage, 'pick'])).toBe('bad-message: game must have 2 field(s), got 1');
   });
 
   it('refuses a welcome whose message rows are malformed', () => {
