@@ -3,6 +3,7 @@
 import './physics-node.ts';
 import type { IncomingMessage, ServerResponse } from 'node:http';
 import type { AddressInfo } from 'node:net';
+import type { NetModeRequest } from './net-mode-policy.ts';
 import { createSecureContext } from 'node:tls';
 import { join } from 'node:path';
 import { DEFAULT_SCENARIO, listScenarios } from '../scenarios/index.ts';
@@ -41,6 +42,8 @@ export interface StartServerOptions extends AccessOptions {
   seed?: number | string;
   /** Snapshots per second per client (1–60). Default 30. */
   snapshotRateHz?: number;
+  /** Net mode of rooms not asked for one ('auto': predict where the cost estimate allows). Default 'auto'. */
+  netMode?: NetModeRequest;
   /** Record every room's input log here. */
   recordDir?: string | null;
   /** A state hash record in recordings every N ticks (default 60; 1 checks every tick on replay). */
@@ -165,6 +168,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     metrics,
     logger,
     snapshotRateHz: opts.snapshotRateHz,
+    netMode: opts.netMode,
     maxClientsPerRoom: opts.maxClients,
     maxConnections: opts.maxConnections,
     maxRooms: opts.maxRooms,
