@@ -23,6 +23,7 @@ import { createMetrics, type ServerMetrics } from './metrics.ts';
 import { PACKAGE_ROOT } from './package-root.ts';
 import { createRoomFactory, type ScenarioSource } from './room-factory.ts';
 import type { DurabilityOptions } from './recorder.ts';
+import { checkReplayLog, withReplayLog } from './replay-log.ts';
 import { createStaticHandler } from './static-files.ts';
 import { attachWsGateway } from './ws-gateway.ts';
 import { WorkerPool } from './workers/worker-pool.ts';
@@ -59,6 +60,8 @@ export interface StartServerOptions extends AccessOptions {
   emptyRoomGraceMs?: number;
   /** Directory of the built client. Default dist/client. */
   clientDir?: string;
+  /** An input log the replay viewer (/replay) opens: served at /replay.taoslog. */
+  replayFile?: string;
   /** A game's own page folder, served before the built client (its index.html replaces the stock page; the stock
    *  files, /kit.js among them, stay reachable where the folder has no file of that name). */
   pageDir?: string;
@@ -134,6 +137,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   const port = opts.port ?? 8080;
   const host = opts.host ?? '127.0.0.1';
   if (!Number.isInteger(port) || port < 0 || port > 65535) throw new Error(`port must be an integer in [0, 65535], got ${port}`);
+  if (opts.replayFile) await checkReplayLog(opts.replayFile);
   const access = createServerAccess(opts, metrics, logger);
   if (opts.tls) checkTls(opts.tls);
   const policy = new ConnectionPolicy(clock, { maxSockets: opts.maxConnections ?? 256, ...opts.connectionPolicy });
@@ -181,7 +185,8 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
 
   const stockFiles = createStaticHandler(opts.clientDir ?? DEFAULT_CLIENT_DIR);
   const pageFiles = opts.pageDir === undefined ? null : createStaticHandler(opts.pageDir, true);
-  const staticFiles = pageFiles === null ? stockFiles : async (req: IncomingMessage, res: ServerResponse) => (await pageFiles(req, res)) || stockFiles(req, res);
+  const clientFiles = pageFiles === null ? stockFiles : async (req: IncomingMessage, res: ServerResponse) => (await pageFiles(req, res)) || stockFiles(req, res);
+  const staticFiles = opts.replayFile ? withReplayLog(opts.replayFile, clientFiles) : clientFiles;
   const http = createHttpServer(
     createHttpApi({ game, scenarios, metrics, logger, access, staticFiles }),
     (error) => logger.error({ err: error }, 'HTTP request failed'),
