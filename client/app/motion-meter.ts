@@ -18,6 +18,10 @@ export interface KeyToMotion {
    * simulation that was drawn later than its tick (a late input the server replaced by the previous one).
    */
   staleFrames: number;
+  /** The first input tick the key's command went into. */
+  keyTick: number;
+  /** Ticks the world drawn in the frame that showed the move had run (fractional when interpolated). */
+  shownAfterTicks: number;
 }
 
 type Vec3 = readonly [number, number, number];
@@ -59,7 +63,7 @@ export class KeyToMotionMeter {
     }
     const p = this.pending;
     if (p && distance(position, p.from) > MOVED_METRES) {
-      this.last = { frames: framesRendered - p.framesAtKey, ms: nowMs - p.atMs, staleFrames: p.stale };
+      this.last = { frames: framesRendered - p.framesAtKey, ms: nowMs - p.atMs, staleFrames: p.stale, keyTick: p.keyTick, shownAfterTicks: ticks };
       this.count++;
       this.pending = null;
     } else if (p && ticks >= p.keyTick + 1) {

@@ -14,7 +14,7 @@ describe('KeyToMotionMeter', () => {
     m.frameDrawn(50, 4, 103, [0, 0, 0.002]);
     expect(m.last).toBeNull();
     m.frameDrawn(66, 5, 105, [0, 0, -0.06]);
-    expect(m.last).toEqual({ frames: 3, ms: 46, staleFrames: 0 });
+    expect(m.last).toEqual({ frames: 3, ms: 46, staleFrames: 0, keyTick: 104, shownAfterTicks: 105 });
     expect(m.count).toBe(1);
   });
 
@@ -24,7 +24,7 @@ describe('KeyToMotionMeter', () => {
     m.frameDrawn(16, 11, 51, [1, 0, 1]);
     m.keyDown(18, 11, 51);
     m.frameDrawn(33, 12, 52, [1, 0, 0.9]);
-    expect(m.last).toEqual({ frames: 1, ms: 15, staleFrames: 0 });
+    expect(m.last).toEqual({ frames: 1, ms: 15, staleFrames: 0, keyTick: 51, shownAfterTicks: 52 });
   });
 
   it("counts as stale the frames whose world had run the key's tick without showing the move", () => {
@@ -36,7 +36,7 @@ describe('KeyToMotionMeter', () => {
     m.frameDrawn(33, 4, 43, [0, 0, 0]);
     m.frameDrawn(50, 5, 44, [0, 0, 0]);
     m.frameDrawn(66, 6, 45, [0, 0, -0.07]);
-    expect(m.last).toEqual({ frames: 4, ms: 46, staleFrames: 2 });
+    expect(m.last).toEqual({ frames: 4, ms: 46, staleFrames: 2, keyTick: 42, shownAfterTicks: 45 });
   });
 
   it('starts nothing while the character moves or before one is drawn, and drops a measurement when it vanishes', () => {
