@@ -14,7 +14,7 @@ const REPO_ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 export const DEFAULT_CLIENT_OUT_DIR = join(REPO_ROOT, 'dist', 'client');
 const CLIENT_DIR = join(REPO_ROOT, 'client');
 /** Bundled entry points: source (relative to client/) → output name. */
-const ENTRIES: Readonly<Record<string, string>> = { 'app/main.ts': 'app', 'app/gallery.ts': 'gallery', 'app/replay.ts': 'replay' };
+const ENTRIES: Readonly<Record<string, string>> = { 'app/main.ts': 'app', 'app/gallery.ts': 'gallery', 'app/replay.ts': 'replay', 'kit/index.ts': 'kit' };
 /** The physics chunk's module: pages reach it only by a dynamic import(). */
 const PHYSICS_ENTRY = 'client/physics/index.ts';
 /** Where split chunks and the .wasm go (content-hashed names: served as immutable). */

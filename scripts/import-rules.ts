@@ -22,6 +22,9 @@ const AREA_PREFIXES = [
   ['tests/', 'tests'],
   ['scripts/', 'scripts'],
   ['bin/', 'bin'],
+  ['api/client.ts', 'api/client'],
+  ['api/physics.ts', 'api/physics'],
+  ['api/', 'api'],
 ] as const;
 
 /** Every area. `shared` is the top-level modules of shared/ (clock.ts, byte-io.ts, tick-rate.ts). */
@@ -60,6 +63,11 @@ export const MAY_IMPORT: Readonly<Record<Area, readonly Area[] | '*'>> = {
   // The command line composes everything but the page.
   cli: ['server', 'server/log', 'sdk', 'scenarios', 'shared/physics', 'shared/sim', 'shared/protocol', ...SHARED_BASE],
   bin: ['cli'],
+  // The package's entry points: each re-exports a public surface. `taos-physics/client` is the SDK alone.
+  api: ['api/physics', 'server', 'server/log', 'cli', 'sdk', 'scenarios', 'shared/physics', 'shared/sim', 'shared/protocol', ...SHARED_BASE],
+  'api/client': ['sdk', 'shared/protocol', 'shared/sim', ...SHARED_BASE],
+  // `taos-physics/physics` for browsers: the wrapper alone (Node gets api/physics-node.ts).
+  'api/physics': ['shared/physics', ...SHARED_BASE],
   bench: '*',
   tests: '*',
   scripts: '*',
@@ -76,6 +84,8 @@ export const MAY_USE_PACKAGES: Readonly<Partial<Record<Area, readonly string[]>>
   sdk: [],
   client: [],
   'client/physics': [],
+  'api/client': [],
+  'api/physics': [],
 };
 
 /** Packages only these areas may import, wherever the importer is (tests and tools included). */
@@ -94,7 +104,7 @@ export const PHYSICS_ENTRY_POINTS: Readonly<Record<string, readonly Area[] | '*'
 const PHYSICS_INTERNALS_OPEN_TO: readonly Area[] = ['tests'];
 
 /** Areas whose code runs in the browser: no chain of runtime imports from them may reach the physics engine. */
-export const ENGINE_FREE: readonly Area[] = ['shared', 'shared/physics-data', 'shared/protocol', 'sdk', 'client'];
+export const ENGINE_FREE: readonly Area[] = ['shared', 'shared/physics-data', 'shared/protocol', 'sdk', 'client', 'api/client'];
 
 /** One source file: its repository-relative path (forward slashes) and text. */
 export interface SourceFile {

@@ -48,8 +48,11 @@ async function fileStats(path: string): Promise<Stats | null> {
   }
 }
 
-/** A request handler for static files under `rootDir`; resolves true when it answered the request. */
-export function createStaticHandler(rootDir: string): (req: IncomingMessage, res: ServerResponse) => Promise<boolean> {
+/**
+ * A request handler for static files under `rootDir`; resolves true when it answered the request. With
+ * `fallThrough`, a missing file is left to the next handler (resolves false) instead of answered 404.
+ */
+export function createStaticHandler(rootDir: string, fallThrough = false): (req: IncomingMessage, res: ServerResponse) => Promise<boolean> {
   const root = resolve(rootDir);
   return async (req, res) => {
     if (req.method !== 'GET' && req.method !== 'HEAD') return false;
@@ -80,6 +83,7 @@ export function createStaticHandler(rootDir: string): (req: IncomingMessage, res
       info = await fileStats(path);
     }
     if (!info || !info.isFile()) {
+      if (fallThrough) return false;
       if (pathname === '/' || pathname === '/index.html') {
         res.writeHead(503, { 'content-type': 'text/plain; charset=utf-8', 'cache-control': 'no-store' });
         res.end(req.method === 'HEAD' ? undefined : notBuiltPage(root));

@@ -138,7 +138,7 @@ describe('checkImports', () => {
         }
       }
     };
-    for (const top of ['shared', 'sdk', 'server', 'cli', 'client', 'scenarios', 'bench', 'tests', 'scripts', 'bin']) walk(join(root, top));
+    for (const top of ['shared', 'sdk', 'server', 'cli', 'client', 'scenarios', 'bench', 'tests', 'scripts', 'bin', 'api']) walk(join(root, top));
     expect(files.length).toBeGreaterThan(300);
     expect(problems(files)).toEqual([]);
   });
