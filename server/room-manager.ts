@@ -3,6 +3,7 @@
 // wherever a RoomHost opens them (the room workers).
 import type { Clock, TimerHandle } from '../shared/clock.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
+import type { CatchUpGate } from './catch-up-budget.ts';
 import type { HostedRoom } from './hosted-room.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
@@ -73,6 +74,8 @@ export interface RoomManagerOptions {
   maxCatchUpTicks?: number;
   maxInputLeadTicks?: number;
   pauseWhenEmpty?: boolean;
+  /** The catch-up budget rooms opened on this thread share. Default none. */
+  catchUp?: CatchUpGate | null;
   /** Where rooms are opened; default: on this thread through `factory`. */
   host?: RoomHost | null;
 }

@@ -7,11 +7,13 @@ import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
+import type { CatchUpGate } from './catch-up-budget.ts';
 import type { HostedRoom, MemberSink, RoomEntry, Seat } from './hosted-room.ts';
 import { InputBuffer, OfferResult } from './input-buffer.ts';
 import { enterRoom } from './local-seat.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
+import { RoomPace, type PaceReport } from './room-pace.ts';
 import { SnapshotFanOut } from './snapshot-fan-out.ts';
 import { TickClock } from './tick-clock.ts';
 
@@ -103,6 +105,8 @@ export interface RoomOptions {
   /** Stop ticking while nobody is in the room. Default true. */
   pauseWhenEmpty?: boolean;
   recorder?: RoomRecorder | null;
+  /** The catch-up budget of the thread the room runs on (shared by its rooms). Default none. */
+  catchUp?: CatchUpGate | null;
 }
 
 /** What a successful join gives the member. */
@@ -114,8 +118,8 @@ export interface JoinResult {
   firstInputTick: number;
 }
 
-/** A room's public summary (GET /api/rooms). */
-export interface RoomInfo {
+/** A room's public summary (GET /api/rooms): who is in it, and its pace (ticksPerSecond, slow). */
+export interface RoomInfo extends PaceReport {
   id: string;
   scenario: string;
   clients: number;
@@ -158,6 +162,7 @@ export class Room implements HostedRoom {
   private closedReason: string | null = null;
   private snapshotAccumulator = 0;
   private busySecondsTotal = 0;
+  private readonly pace: RoomPace;
   private lastBodyCount = 0;
   // Static bodies the scene was built with: drawn from the welcome, never in snapshots. Statics spawned later
   // (streamed terrain) travel in snapshots instead, so clients already in the room learn about them.
@@ -178,6 +183,7 @@ export class Room implements HostedRoom {
     this.bounds = opts.bounds ?? { min: { x: -500, y: -500, z: -500 }, max: { x: 500, y: 500, z: 500 } };
     this.params = opts.params;
     this.seed = opts.seed;
+    this.pace = new RoomPace(opts.clock);
     this.snapshots = new SnapshotFanOut({ bounds: this.bounds, isSceneStatic: (id) => this.isSceneStatic(id), describe: (id) => sim.bodyDescriptor(id) ?? undefined });
     const initial = sim.readBodyStates();
     this.lastBodyCount = initial.count;
@@ -186,10 +192,13 @@ export class Room implements HostedRoom {
       clock: opts.clock,
       tickRateHz: TICK_RATE_HZ,
       maxCatchUpTicks: opts.maxCatchUpTicks ?? 4,
+      catchUp: opts.catchUp,
       onTick: () => this.tickOnce(),
       onSlowdown: (r) => {
         opts.metrics.ticksSkipped.inc(r.skippedTicks);
-        opts.logger.warn({ room: this.id, tick: r.tick, skippedTicks: r.skippedTicks, lostMs: Math.round(r.lostMs) }, 'room cannot keep up: slowing down');
+        // Once per episode: a room that cannot keep up gives up ticks on nearly every wake-up.
+        if (!this.pace.report().slow) opts.logger.warn({ room: this.id, tick: r.tick, skippedTicks: r.skippedTicks, lostMs: Math.round(r.lostMs) }, 'room cannot keep up: slowing down');
+        this.pace.slowedDown();
       },
       onError: (error) => this.fail(error),
     });
@@ -253,7 +262,7 @@ export class Room implements HostedRoom {
 
   /** The room's summary. */
   info(): RoomInfo {
-    return { id: this.id, scenario: this.scenarioName, clients: this.players.size, tick: this.sim.tick, bodies: this.lastBodyCount, params: this.params };
+    return { id: this.id, scenario: this.scenarioName, clients: this.players.size, tick: this.sim.tick, bodies: this.lastBodyCount, params: this.params, ...this.pace.report() };
   }
 
   /** Adds a member as a new player; its join goes into the next tick's record. Throws RoomError when refused. */
@@ -397,6 +406,7 @@ export class Room implements HostedRoom {
       if (p) p.inWorld = true;
     }
     m.ticks.inc();
+    this.pace.ticked();
     if (this.players.size === 0 && (this.opts.pauseWhenEmpty ?? true) && this.pendingLeaves.length === 0) this.tickClock.stop();
     this.deliver(tick, events);
     for (const fn of this.tickListeners) fn(record, events);

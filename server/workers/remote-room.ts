@@ -63,7 +63,14 @@ export class RemoteRoom implements HostedRoom {
 
   info(): RoomInfo {
     const s = this.lastStatus;
-    return { ...this.opened, clients: this.players.size, tick: this.lastTick, bodies: s ? s.bodies : this.opened.bodies };
+    return {
+      ...this.opened,
+      clients: this.players.size,
+      tick: this.lastTick,
+      bodies: s ? s.bodies : this.opened.bodies,
+      ticksPerSecond: s ? s.ticksPerSecond : this.opened.ticksPerSecond,
+      slow: s ? s.slow : this.opened.slow,
+    };
   }
 
   heapUsage(): { usedBytes: number; freeBytes: number } | null {

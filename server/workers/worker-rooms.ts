@@ -4,6 +4,7 @@
 import { getHeapStatistics } from 'node:v8';
 import type { Clock } from '../../shared/clock.ts';
 import { ErrorCode } from '../../shared/protocol/opcodes.ts';
+import { CatchUpBudget } from '../catch-up-budget.ts';
 import { DeliveryKind, type MemberSink, type Seat } from '../hosted-room.ts';
 import { enterRoom } from '../local-seat.ts';
 import type { Logger } from '../logger.ts';
@@ -82,6 +83,7 @@ export class WorkerRooms {
   private readonly ticks = new Map<string, number>();
   private flushPending = false;
   private readonly statusTimer: ReturnType<typeof setInterval>;
+  private readonly catchUp = new CatchUpBudget();
 
   constructor(opts: WorkerRoomsOptions) {
     this.opts = opts;
@@ -183,6 +185,7 @@ export class WorkerRooms {
           maxCatchUpTicks: config.maxCatchUpTicks,
           maxInputLeadTicks: config.maxInputLeadTicks,
           pauseWhenEmpty: config.pauseWhenEmpty,
+          catchUp: this.catchUp,
         },
       );
       this.rooms.set(id, room);
@@ -250,7 +253,6 @@ export class WorkerRooms {
     const clock = room.tickClock;
     const w = this.windows.get(room.id) ?? { atMs: now, ticks: clock.ticksRun, busySeconds: room.busySeconds, skipped: clock.skippedTicks, cpuMs: null };
     const ran = clock.ticksRun - w.ticks;
-    const elapsedMs = now - w.atMs;
     const cpuMs = ran > 0 ? ((room.busySeconds - w.busySeconds) * 1000) / ran : w.cpuMs;
     this.windows.set(room.id, { atMs: now, ticks: clock.ticksRun, busySeconds: room.busySeconds, skipped: clock.skippedTicks, cpuMs });
     const missed: number[] = [];
@@ -262,9 +264,9 @@ export class WorkerRooms {
       clients: info.clients,
       bodies: info.bodies,
       heap: room.heapUsage(),
-      ticksPerSecond: elapsedMs > 0 ? (ran * 1000) / elapsedMs : 0,
+      ticksPerSecond: info.ticksPerSecond,
       tickCpuMs: cpuMs,
-      slow: clock.skippedTicks > w.skipped,
+      slow: info.slow,
       skippedTicks: clock.skippedTicks,
       missedInputTicks: missed,
     };

@@ -1,0 +1,56 @@
+// A room's pace as its players feel it: ticks run per second over the last second, and whether it has given up ticks
+// lately (it cannot keep the tick rate and runs slowed). Shown in the room list, /metrics and the room workers' status.
+import type { Clock } from '../shared/clock.ts';
+
+/** How long a room counts as slow after it last gave up ticks. */
+export const SLOW_HOLD_MS = 2000;
+const WINDOW_MS = 1000;
+
+/** What RoomInfo reports of a room's pace. */
+export interface PaceReport {
+  /** Ticks run per second over the last second (0 while the room is paused or stalled). */
+  ticksPerSecond: number;
+  /** True while the room cannot keep the tick rate (it gave up ticks within the last SLOW_HOLD_MS). */
+  slow: boolean;
+}
+
+/** Counts a room's ticks and slowdowns on its clock. */
+export class RoomPace {
+  private readonly clock: Clock;
+  private windowStartMs = -1;
+  private ticksInWindow = 0;
+  private rate = 0;
+  private lastSlowdownMs = -Infinity;
+
+  constructor(clock: Clock) {
+    this.clock = clock;
+  }
+
+  /** One tick ran. */
+  ticked(): void {
+    const now = this.clock.nowMs();
+    if (this.windowStartMs < 0 || now - this.windowStartMs > 2 * WINDOW_MS) {
+      this.windowStartMs = now;
+      this.ticksInWindow = 0;
+      return;
+    }
+    this.ticksInWindow++;
+    const elapsedMs = now - this.windowStartMs;
+    if (elapsedMs >= WINDOW_MS) {
+      this.rate = (this.ticksInWindow * 1000) / elapsedMs;
+      this.windowStartMs = now;
+      this.ticksInWindow = 0;
+    }
+  }
+
+  /** The room gave up ticks. */
+  slowedDown(): void {
+    this.lastSlowdownMs = this.clock.nowMs();
+  }
+
+  report(): PaceReport {
+    const now = this.clock.nowMs();
+    const stalled = this.windowStartMs < 0 || now - this.windowStartMs > 2 * WINDOW_MS;
+    return { ticksPerSecond: stalled ? 0 : Math.round(this.rate * 10) / 10, slow: now - this.lastSlowdownMs < SLOW_HOLD_MS };
+  }
+}

@@ -1,0 +1,35 @@
+// Tests for server/room-pace.ts: ticks per second over the last second, 0 once ticks stop, and the slow flag's hold.
+import { describe, expect, it } from 'vitest';
+import { RoomPace, SLOW_HOLD_MS } from '../../server/room-pace.ts';
+import { ManualClock } from '../../shared/clock.ts';
+import { TICK_MS } from '../../shared/tick-rate.ts';
+
+describe('RoomPace', () => {
+  it('reports the ticks run over the last second, and 0 once they stop', () => {
+    const clock = new ManualClock();
+    const pace = new RoomPace(clock);
+    for (let i = 0; i < 130; i++) {
+      pace.ticked();
+      clock.advance(TICK_MS);
+    }
+    expect(pace.report().ticksPerSecond).toBeCloseTo(60, 0);
+    for (let i = 0; i < 70; i++) {
+      pace.ticked();
+      clock.advance(TICK_MS * 2);
+    }
+    expect(pace.report().ticksPerSecond).toBeCloseTo(30, 0);
+    clock.advance(3000);
+    expect(pace.report()).toEqual({ ticksPerSecond: 0, slow: false });
+  });
+
+  it('says slow from a slowdown until SLOW_HOLD_MS pass without another', () => {
+    const clock = new ManualClock();
+    const pace = new RoomPace(clock);
+    expect(pace.report().slow).toBe(false);
+    pace.slowedDown();
+    clock.advance(SLOW_HOLD_MS - 1);
+    expect(pace.report().slow).toBe(true);
+    clock.advance(2);
+    expect(pace.report().slow).toBe(false);
+  });
+});
