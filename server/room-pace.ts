@@ -1,10 +1,12 @@
-// A room's pace as its players feel it: ticks run per second over the last second, and whether it has given up ticks
-// lately (it cannot keep the tick rate and runs slowed). Shown in the room list, /metrics and the room workers' status.
+// A room's pace as its players feel it: ticks run per second over the last second, the 99th percentile of its recent
+// tick times, and whether it has given up ticks lately (it cannot keep the tick rate and runs slowed). Shown in the room list, /metrics and the room workers' status.
 import type { Clock } from '../shared/clock.ts';
 
 /** How long a room counts as slow after it last gave up ticks. */
 export const SLOW_HOLD_MS = 2000;
 const WINDOW_MS = 1000;
+/** Tick times kept for the percentile: the last 10 s at 60 Hz. */
+const TICK_TIMES_KEPT = 600;
 
 /** What RoomInfo reports of a room's pace. */
 export interface PaceReport {
@@ -12,6 +14,8 @@ export interface PaceReport {
   ticksPerSecond: number;
   /** True while the room cannot keep the tick rate (it gave up ticks within the last SLOW_HOLD_MS). */
   slow: boolean;
+  /** 99th percentile of the wall time of its last 600 ticks, in ms (null before the first tick). */
+  tickMsP99: number | null;
 }
 
 /** Counts a room's ticks and slowdowns on its clock. */
@@ -21,13 +25,16 @@ export class RoomPace {
   private ticksInWindow = 0;
   private rate = 0;
   private lastSlowdownMs = -Infinity;
+  private readonly tickMs = new Float64Array(TICK_TIMES_KEPT);
+  private tickCount = 0;
 
   constructor(clock: Clock) {
     this.clock = clock;
   }
 
-  /** One tick ran. */
-  ticked(): void {
+  /** One tick ran, taking `tookMs` of wall time. */
+  ticked(tookMs: number): void {
+    this.tickMs[this.tickCount++ % TICK_TIMES_KEPT] = tookMs;
     const now = this.clock.nowMs();
     if (this.windowStartMs < 0 || now - this.windowStartMs > 2 * WINDOW_MS) {
       this.windowStartMs = now;
@@ -51,6 +58,13 @@ export class RoomPace {
   report(): PaceReport {
     const now = this.clock.nowMs();
     const stalled = this.windowStartMs < 0 || now - this.windowStartMs > 2 * WINDOW_MS;
-    return { ticksPerSecond: stalled ? 0 : Math.round(this.rate * 10) / 10, slow: now - this.lastSlowdownMs < SLOW_HOLD_MS };
+    return { ticksPerSecond: stalled ? 0 : Math.round(this.rate * 10) / 10, slow: now - this.lastSlowdownMs < SLOW_HOLD_MS, tickMsP99: this.tickP99() };
+  }
+
+  private tickP99(): number | null {
+    const n = Math.min(this.tickCount, TICK_TIMES_KEPT);
+    if (n === 0) return null;
+    const sorted = this.tickMs.slice(0, n).sort();
+    return Math.round(sorted[Math.min(n - 1, Math.floor(n * 0.99))] * 1000) / 1000;
   }
 }

@@ -406,12 +406,12 @@ export class Room implements HostedRoom {
       if (p) p.inWorld = true;
     }
     m.ticks.inc();
-    this.pace.ticked();
     if (this.players.size === 0 && (this.opts.pauseWhenEmpty ?? true) && this.pendingLeaves.length === 0) this.tickClock.stop();
     this.deliver(tick, events);
     for (const fn of this.tickListeners) fn(record, events);
     const seconds = (performance.now() - started) / 1000;
     this.busySecondsTotal += seconds;
+    this.pace.ticked(seconds * 1000);
     m.tickDuration.observe(seconds);
     if (seconds > 1 / TICK_RATE_HZ) m.tickOverruns.inc();
   }

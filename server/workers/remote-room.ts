@@ -70,6 +70,7 @@ export class RemoteRoom implements HostedRoom {
       bodies: s ? s.bodies : this.opened.bodies,
       ticksPerSecond: s ? s.ticksPerSecond : this.opened.ticksPerSecond,
       slow: s ? s.slow : this.opened.slow,
+      tickMsP99: s ? s.tickMsP99 : this.opened.tickMsP99,
     };
   }
 

@@ -40,8 +40,10 @@ export interface RoomStatus {
   ticksPerSecond: number;
   /** Mean CPU milliseconds per tick over the last window (null before the room has ticked). */
   tickCpuMs: number | null;
-  /** True while the room cannot keep 60 Hz (ticks given up in the last window). */
+  /** True while the room cannot keep 60 Hz (it gave up ticks within the last 2 s). */
   slow: boolean;
+  /** 99th percentile of its last 600 tick times (ms). */
+  tickMsP99: number | null;
   /** Ticks given up since the room opened. */
   skippedTicks: number;
   /** [playerId, missed input ticks] pairs, flat. */

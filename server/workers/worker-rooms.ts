@@ -267,6 +267,7 @@ export class WorkerRooms {
       ticksPerSecond: info.ticksPerSecond,
       tickCpuMs: cpuMs,
       slow: info.slow,
+      tickMsP99: info.tickMsP99,
       skippedTicks: clock.skippedTicks,
       missedInputTicks: missed,
     };

@@ -9,17 +9,24 @@ describe('RoomPace', () => {
     const clock = new ManualClock();
     const pace = new RoomPace(clock);
     for (let i = 0; i < 130; i++) {
-      pace.ticked();
+      pace.ticked(1);
       clock.advance(TICK_MS);
     }
     expect(pace.report().ticksPerSecond).toBeCloseTo(60, 0);
     for (let i = 0; i < 70; i++) {
-      pace.ticked();
+      pace.ticked(2);
       clock.advance(TICK_MS * 2);
     }
     expect(pace.report().ticksPerSecond).toBeCloseTo(30, 0);
     clock.advance(3000);
-    expect(pace.report()).toEqual({ ticksPerSecond: 0, slow: false });
+    expect(pace.report()).toEqual({ ticksPerSecond: 0, slow: false, tickMsP99: 2 });
+  });
+
+  it('reports the 99th percentile of the last 600 tick times', () => {
+    const pace = new RoomPace(new ManualClock());
+    expect(pace.report().tickMsP99).toBeNull();
+    for (let i = 0; i < 1000; i++) pace.ticked(i < 400 ? 50 : (i % 100) / 10);
+    expect(pace.report().tickMsP99).toBe(9.9);
   });
 
   it('says slow from a slowdown until SLOW_HOLD_MS pass without another', () => {
