@@ -162,6 +162,7 @@ export class Room implements HostedRoom {
   private closedReason: string | null = null;
   private snapshotAccumulator = 0;
   private busySecondsTotal = 0;
+  private cpuSecondsTotal = 0;
   private readonly pace: RoomPace;
   private lastBodyCount = 0;
   // Static bodies the scene was built with: drawn from the welcome, never in snapshots. Statics spawned later
@@ -236,9 +237,14 @@ export class Room implements HostedRoom {
     return this.players.has(playerId);
   }
 
-  /** Wall seconds this room's ticks have taken since it opened (its load on its thread). */
+  /** Wall seconds this room's ticks have taken since it opened. */
   get busySeconds(): number {
     return this.busySecondsTotal;
+  }
+
+  /** CPU seconds of its thread this room's ticks have used since it opened (its load on its thread). */
+  get cpuSeconds(): number {
+    return this.cpuSecondsTotal;
   }
 
   /** Whether the room has closed. */
@@ -380,6 +386,7 @@ export class Room implements HostedRoom {
   tickOnce(): void {
     if (this.closed) return;
     const started = performance.now();
+    const cpuStarted = process.threadCpuUsage();
     const tick = this.sim.tick;
     const leaves = this.pendingLeaves.sort((a, b) => a - b);
     this.pendingLeaves = [];
@@ -410,8 +417,11 @@ export class Room implements HostedRoom {
     this.deliver(tick, events);
     for (const fn of this.tickListeners) fn(record, events);
     const seconds = (performance.now() - started) / 1000;
+    const cpu = process.threadCpuUsage(cpuStarted);
+    const cpuSeconds = (cpu.user + cpu.system) / 1e6;
     this.busySecondsTotal += seconds;
-    this.pace.ticked(seconds * 1000);
+    this.cpuSecondsTotal += cpuSeconds;
+    this.pace.ticked(seconds * 1000, cpuSeconds * 1000);
     m.tickDuration.observe(seconds);
     if (seconds > 1 / TICK_RATE_HZ) m.tickOverruns.inc();
   }

@@ -22,6 +22,7 @@ import { createMetrics, type ServerMetrics } from './metrics.ts';
 import { createRoomFactory, type ScenarioSource } from './room-factory.ts';
 import { createStaticHandler } from './static-files.ts';
 import { attachWsGateway } from './ws-gateway.ts';
+import { WORKER_BUDGET_MS_PER_TICK } from './workers/room-cost.ts';
 import { WorkerPool } from './workers/worker-pool.ts';
 
 const REPO_ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
@@ -140,6 +141,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
             maxClientsPerRoom: opts.maxClients ?? 32,
             recordDir: opts.recordDir ?? null,
             recordHashEveryTicks: opts.recordHashEveryTicks,
+            budgetMsPerTick: WORKER_BUDGET_MS_PER_TICK,
           },
           scenarioModules: opts.workerScenarioModules,
           logLevel: logger.level,

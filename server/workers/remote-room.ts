@@ -71,6 +71,7 @@ export class RemoteRoom implements HostedRoom {
       ticksPerSecond: s ? s.ticksPerSecond : this.opened.ticksPerSecond,
       slow: s ? s.slow : this.opened.slow,
       tickMsP99: s ? s.tickMsP99 : this.opened.tickMsP99,
+      tickCpuMsP99: s ? s.tickCpuMsP99 : this.opened.tickCpuMsP99,
     };
   }
 

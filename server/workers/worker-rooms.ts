@@ -12,6 +12,7 @@ import type { ServerMetrics } from '../metrics.ts';
 import { openRoom } from '../open-room.ts';
 import { RoomError, type Room } from '../room.ts';
 import type { RoomFactory } from '../room-manager.ts';
+import { OVERLOADED_NICENESS, setThreadNiceness } from './thread-priority.ts';
 import { ByteBatcher, STATUS_INTERVAL_MS, type FromWorker, type RoomStatus, type ToWorker, type WorkerRoomConfig } from './worker-protocol.ts';
 
 /** How a worker posts to the main thread (`transfer`: buffers whose ownership moves with the message). */
@@ -68,7 +69,7 @@ interface MemberEntry {
 interface Window {
   atMs: number;
   ticks: number;
-  busySeconds: number;
+  cpuSeconds: number;
   skipped: number;
   cpuMs: number | null;
 }
@@ -84,6 +85,7 @@ export class WorkerRooms {
   private flushPending = false;
   private readonly statusTimer: ReturnType<typeof setInterval>;
   private readonly catchUp = new CatchUpBudget();
+  private overloaded = false;
 
   constructor(opts: WorkerRoomsOptions) {
     this.opts = opts;
@@ -246,15 +248,29 @@ export class WorkerRooms {
     const now = performance.now();
     const rooms: RoomStatus[] = [];
     for (const room of this.rooms.values()) rooms.push(this.status(room, now));
+    this.adjustPriority(rooms);
     this.opts.post({ t: 'status', rooms, externalBytes: getHeapStatistics().external_memory });
+  }
+
+  // Over budget, the worker's rooms cannot all keep 60 Hz: the worker yields the CPU to the main thread and the other
+  // workers (its rooms slow down and say so) until its load fits again.
+  private adjustPriority(rooms: readonly RoomStatus[]): void {
+    let loadMs = 0;
+    for (const r of rooms) loadMs += r.tickCpuMs ?? 0;
+    const overloaded = loadMs > this.opts.config.budgetMsPerTick;
+    if (overloaded === this.overloaded) return;
+    this.overloaded = overloaded;
+    const failed = setThreadNiceness(overloaded ? OVERLOADED_NICENESS : 0);
+    if (failed !== null) this.opts.logger.warn({ loadMs, overloaded, reason: failed }, 'room worker could not change its thread priority');
+    else this.opts.logger.info({ loadMs: Math.round(loadMs * 10) / 10, budgetMs: this.opts.config.budgetMsPerTick }, overloaded ? 'room worker over its CPU budget: running at the lowest priority' : 'room worker back within its CPU budget: normal priority');
   }
 
   private status(room: Room, now: number): RoomStatus {
     const clock = room.tickClock;
-    const w = this.windows.get(room.id) ?? { atMs: now, ticks: clock.ticksRun, busySeconds: room.busySeconds, skipped: clock.skippedTicks, cpuMs: null };
+    const w = this.windows.get(room.id) ?? { atMs: now, ticks: clock.ticksRun, cpuSeconds: room.cpuSeconds, skipped: clock.skippedTicks, cpuMs: null };
     const ran = clock.ticksRun - w.ticks;
-    const cpuMs = ran > 0 ? ((room.busySeconds - w.busySeconds) * 1000) / ran : w.cpuMs;
-    this.windows.set(room.id, { atMs: now, ticks: clock.ticksRun, busySeconds: room.busySeconds, skipped: clock.skippedTicks, cpuMs });
+    const cpuMs = ran > 0 ? ((room.cpuSeconds - w.cpuSeconds) * 1000) / ran : w.cpuMs;
+    this.windows.set(room.id, { atMs: now, ticks: clock.ticksRun, cpuSeconds: room.cpuSeconds, skipped: clock.skippedTicks, cpuMs });
     const missed: number[] = [];
     const info = room.info();
     for (const playerId of room.playerIds()) missed.push(playerId, room.missedInputTicks(playerId));
@@ -268,6 +284,7 @@ export class WorkerRooms {
       tickCpuMs: cpuMs,
       slow: info.slow,
       tickMsP99: info.tickMsP99,
+      tickCpuMsP99: info.tickCpuMsP99,
       skippedTicks: clock.skippedTicks,
       missedInputTicks: missed,
     };

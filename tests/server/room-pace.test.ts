@@ -19,7 +19,7 @@ describe('RoomPace', () => {
     }
     expect(pace.report().ticksPerSecond).toBeCloseTo(30, 0);
     clock.advance(3000);
-    expect(pace.report()).toEqual({ ticksPerSecond: 0, slow: false, tickMsP99: 2 });
+    expect(pace.report()).toEqual({ ticksPerSecond: 0, slow: false, tickMsP99: 2, tickCpuMsP99: 2 });
   });
 
   it('reports the 99th percentile of the last 600 tick times', () => {
