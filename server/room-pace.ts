@@ -18,6 +18,8 @@ export interface PaceReport {
   tickMsP99: number | null;
   /** 99th percentile of the CPU time its thread spent in its last 600 ticks, in ms (null before the first tick). */
   tickCpuMsP99: number | null;
+  /** The longest time between two tick starts among its last 600 ticks, in ms: a stall (null before two ticks). */
+  tickGapMsMax: number | null;
 }
 
 /** Counts a room's ticks and slowdowns on its clock. */
@@ -29,6 +31,9 @@ export class RoomPace {
   private lastSlowdownMs = -Infinity;
   private readonly tickMs = new Float64Array(TICK_TIMES_KEPT);
   private readonly tickCpuMs = new Float64Array(TICK_TIMES_KEPT);
+  private readonly gapsMs = new Float64Array(TICK_TIMES_KEPT);
+  private gapCount = 0;
+  private lastStartMs = -1;
   private tickCount = 0;
 
   constructor(clock: Clock) {
@@ -40,6 +45,9 @@ export class RoomPace {
     this.tickCpuMs[this.tickCount % TICK_TIMES_KEPT] = cpuMs;
     this.tickMs[this.tickCount++ % TICK_TIMES_KEPT] = tookMs;
     const now = this.clock.nowMs();
+    const startMs = now - tookMs;
+    if (this.lastStartMs >= 0) this.gapsMs[this.gapCount++ % TICK_TIMES_KEPT] = startMs - this.lastStartMs;
+    this.lastStartMs = startMs;
     if (this.windowStartMs < 0 || now - this.windowStartMs > 2 * WINDOW_MS) {
       this.windowStartMs = now;
       this.ticksInWindow = 0;
@@ -62,7 +70,20 @@ export class RoomPace {
   report(): PaceReport {
     const now = this.clock.nowMs();
     const stalled = this.windowStartMs < 0 || now - this.windowStartMs > 2 * WINDOW_MS;
-    return { ticksPerSecond: stalled ? 0 : Math.round(this.rate * 10) / 10, slow: now - this.lastSlowdownMs < SLOW_HOLD_MS, tickMsP99: this.p99(this.tickMs), tickCpuMsP99: this.p99(this.tickCpuMs) };
+    return { ticksPerSecond: stalled ? 0 : Math.round(this.rate * 10) / 10, slow: now - this.lastSlowdownMs < SLOW_HOLD_MS, tickMsP99: this.p99(this.tickMs), tickCpuMsP99: this.p99(this.tickCpuMs), tickGapMsMax: this.maxGap() };
+  }
+
+  /** Forgets the gap to the previous tick (the room paused: the time it spent empty is no stall). */
+  paused(): void {
+    this.lastStartMs = -1;
+  }
+
+  private maxGap(): number | null {
+    const n = Math.min(this.gapCount, TICK_TIMES_KEPT);
+    if (n === 0) return null;
+    let max = 0;
+    for (let i = 0; i < n; i++) max = Math.max(max, this.gapsMs[i]);
+    return Math.round(max * 1000) / 1000;
   }
 
   private p99(times: Float64Array): number | null {

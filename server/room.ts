@@ -413,7 +413,10 @@ export class Room implements HostedRoom {
       if (p) p.inWorld = true;
     }
     m.ticks.inc();
-    if (this.players.size === 0 && (this.opts.pauseWhenEmpty ?? true) && this.pendingLeaves.length === 0) this.tickClock.stop();
+    if (this.players.size === 0 && (this.opts.pauseWhenEmpty ?? true) && this.pendingLeaves.length === 0) {
+      this.tickClock.stop();
+      this.pace.paused();
+    }
     this.deliver(tick, events);
     for (const fn of this.tickListeners) fn(record, events);
     const seconds = (performance.now() - started) / 1000;

@@ -72,6 +72,7 @@ export class RemoteRoom implements HostedRoom {
       slow: s ? s.slow : this.opened.slow,
       tickMsP99: s ? s.tickMsP99 : this.opened.tickMsP99,
       tickCpuMsP99: s ? s.tickCpuMsP99 : this.opened.tickCpuMsP99,
+      tickGapMsMax: s ? s.tickGapMsMax : this.opened.tickGapMsMax,
     };
   }
 

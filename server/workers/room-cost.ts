@@ -9,10 +9,10 @@ export const WORKER_BUDGET_MS_PER_TICK = TICK_MS * 0.75;
 /** Estimated CPU ms per tick of a room that has not ticked yet, by scenario (linear in what it simulates). */
 const ESTIMATES: Readonly<Record<string, (p: Readonly<Record<string, number>>) => number>> = {
   'character-course': () => 0.4,
-  'shape-rain': (p) => 0.2 + (p.count ?? 300) * 0.006,
+  'shape-rain': (p) => 0.3 + (p.count ?? 300) * 0.0025 * ((p.sizeMetres ?? 0.35) / 0.35) ** 2,
   'height-field': (p) => 0.3 + (p.bodyCount ?? 80) * 0.007 + ((p.samplesPerSide ?? 64) / 256) ** 2,
   'convex-hulls': (p) => 0.2 + ((p.count ?? 150) * 0.004 * (p.maxPoints ?? 24)) / 8,
-  'mesh-terrain': () => 1.5,
+  'mesh-terrain': (p) => 0.3 + (p.bodyCount ?? 80) * 0.005,
   'pendulum-chain': () => 0.8,
   'terrain-balls': () => 2,
   'cubes-901': () => 2.5,

@@ -48,6 +48,8 @@ export interface RoomStatus {
   tickMsP99: number | null;
   /** 99th percentile of the CPU time of its last 600 ticks (ms). */
   tickCpuMsP99: number | null;
+  /** Longest time between two tick starts among its last 600 ticks (ms). */
+  tickGapMsMax: number | null;
   /** Ticks given up since the room opened. */
   skippedTicks: number;
   /** [playerId, missed input ticks] pairs, flat. */

@@ -285,6 +285,7 @@ export class WorkerRooms {
       slow: info.slow,
       tickMsP99: info.tickMsP99,
       tickCpuMsP99: info.tickCpuMsP99,
+      tickGapMsMax: info.tickGapMsMax,
       skippedTicks: clock.skippedTicks,
       missedInputTicks: missed,
     };

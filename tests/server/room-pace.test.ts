@@ -19,7 +19,7 @@ describe('RoomPace', () => {
     }
     expect(pace.report().ticksPerSecond).toBeCloseTo(30, 0);
     clock.advance(3000);
-    expect(pace.report()).toEqual({ ticksPerSecond: 0, slow: false, tickMsP99: 2, tickCpuMsP99: 2 });
+    expect(pace.report()).toMatchObject({ ticksPerSecond: 0, slow: false, tickMsP99: 2, tickCpuMsP99: 2 });
   });
 
   it('reports the 99th percentile of the last 600 tick times', () => {
@@ -27,6 +27,21 @@ describe('RoomPace', () => {
     expect(pace.report().tickMsP99).toBeNull();
     for (let i = 0; i < 1000; i++) pace.ticked(i < 400 ? 50 : (i % 100) / 10);
     expect(pace.report().tickMsP99).toBe(9.9);
+  });
+
+  it('reports the longest time between two tick starts, not counting a pause', () => {
+    const clock = new ManualClock();
+    const pace = new RoomPace(clock);
+    expect(pace.report().tickGapMsMax).toBeNull();
+    for (let i = 0; i < 10; i++) {
+      clock.advance(i === 5 ? 120 : TICK_MS);
+      pace.ticked(1);
+    }
+    expect(pace.report().tickGapMsMax).toBeCloseTo(120, 6);
+    pace.paused();
+    clock.advance(60_000);
+    pace.ticked(1);
+    expect(pace.report().tickGapMsMax).toBeCloseTo(120, 6);
   });
 
   it('says slow from a slowdown until SLOW_HOLD_MS pass without another', () => {
