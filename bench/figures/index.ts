@@ -39,6 +39,14 @@ export const FIGURES: readonly FigureSpec[] = Object.freeze([
     module: 'figures/rooms-per-core.ts',
   },
   {
+    name: 'rooms-per-core-workers',
+    title: 'rooms per core, room workers',
+    detailKey: 'roomsPerCoreWorkersDetail',
+    headlineKeys: ['roomsPerCoreWorkers', 'mainThreadUsPerClientTick'],
+    timeLimitMs: (quick: boolean) => (quick ? min(3) : min(6)),
+    module: 'figures/rooms-per-core-workers.ts',
+  },
+  {
     name: 'input-latency',
     title: 'input latency',
     detailKey: 'inputLatency',
@@ -102,6 +110,8 @@ export const HEADLINE_KEYS: readonly string[] = [
   'usPerClientTick',
   'gcPauseP99Ms',
   'roomsPerCore',
+  'roomsPerCoreWorkers',
+  'mainThreadUsPerClientTick',
   'inputLatencyTicks',
   'replayRatio',
   'hashMsPerTick1000',
