@@ -28,5 +28,6 @@ export function enterRoom(room: Room, sink: MemberSink, entry: RoomEntry, metric
     acknowledge: (tick) => encoder.acknowledge(tick),
     serverTick: () => room.sim.tick,
     missedInputTicks: () => room.missedInputTicks(playerId),
+    pace: () => room.pace(),
   };
 }

@@ -27,7 +27,7 @@ export class RoomPace {
   private readonly clock: Clock;
   private windowStartMs = -1;
   private ticksInWindow = 0;
-  private rate = 0;
+  private ticksRate = 0;
   private lastSlowdownMs = -Infinity;
   private readonly tickMs = new Float64Array(TICK_TIMES_KEPT);
   private readonly tickCpuMs = new Float64Array(TICK_TIMES_KEPT);
@@ -56,7 +56,7 @@ export class RoomPace {
     this.ticksInWindow++;
     const elapsedMs = now - this.windowStartMs;
     if (elapsedMs >= WINDOW_MS) {
-      this.rate = (this.ticksInWindow * 1000) / elapsedMs;
+      this.ticksRate = (this.ticksInWindow * 1000) / elapsedMs;
       this.windowStartMs = now;
       this.ticksInWindow = 0;
     }
@@ -67,10 +67,15 @@ export class RoomPace {
     this.lastSlowdownMs = this.clock.nowMs();
   }
 
-  report(): PaceReport {
+  /** Ticks per second and the slow flag alone (no percentiles: cheap enough for every pong). */
+  rate(): { ticksPerSecond: number; slow: boolean } {
     const now = this.clock.nowMs();
     const stalled = this.windowStartMs < 0 || now - this.windowStartMs > 2 * WINDOW_MS;
-    return { ticksPerSecond: stalled ? 0 : Math.round(this.rate * 10) / 10, slow: now - this.lastSlowdownMs < SLOW_HOLD_MS, tickMsP99: this.p99(this.tickMs), tickCpuMsP99: this.p99(this.tickCpuMs), tickGapMsMax: this.maxGap() };
+    return { ticksPerSecond: stalled ? 0 : Math.round(this.ticksRate * 10) / 10, slow: now - this.lastSlowdownMs < SLOW_HOLD_MS };
+  }
+
+  report(): PaceReport {
+    return { ...this.rate(), tickMsP99: this.p99(this.tickMs), tickCpuMsP99: this.p99(this.tickCpuMs), tickGapMsMax: this.maxGap() };
   }
 
   /** Forgets the gap to the previous tick (the room paused: the time it spent empty is no stall). */

@@ -163,7 +163,7 @@ export class Room implements HostedRoom {
   private snapshotAccumulator = 0;
   private busySecondsTotal = 0;
   private cpuSecondsTotal = 0;
-  private readonly pace: RoomPace;
+  private readonly paceMeter: RoomPace;
   private lastBodyCount = 0;
   // Static bodies the scene was built with: drawn from the welcome, never in snapshots. Statics spawned later
   // (streamed terrain) travel in snapshots instead, so clients already in the room learn about them.
@@ -184,7 +184,7 @@ export class Room implements HostedRoom {
     this.bounds = opts.bounds ?? { min: { x: -500, y: -500, z: -500 }, max: { x: 500, y: 500, z: 500 } };
     this.params = opts.params;
     this.seed = opts.seed;
-    this.pace = new RoomPace(opts.clock);
+    this.paceMeter = new RoomPace(opts.clock);
     this.snapshots = new SnapshotFanOut({ bounds: this.bounds, isSceneStatic: (id) => this.isSceneStatic(id), describe: (id) => sim.bodyDescriptor(id) ?? undefined });
     const initial = sim.readBodyStates();
     this.lastBodyCount = initial.count;
@@ -198,8 +198,8 @@ export class Room implements HostedRoom {
       onSlowdown: (r) => {
         opts.metrics.ticksSkipped.inc(r.skippedTicks);
         // Once per episode: a room that cannot keep up gives up ticks on nearly every wake-up.
-        if (!this.pace.report().slow) opts.logger.warn({ room: this.id, tick: r.tick, skippedTicks: r.skippedTicks, lostMs: Math.round(r.lostMs) }, 'room cannot keep up: slowing down');
-        this.pace.slowedDown();
+        if (!this.paceMeter.rate().slow) opts.logger.warn({ room: this.id, tick: r.tick, skippedTicks: r.skippedTicks, lostMs: Math.round(r.lostMs) }, 'room cannot keep up: slowing down');
+        this.paceMeter.slowedDown();
       },
       onError: (error) => this.fail(error),
     });
@@ -237,6 +237,11 @@ export class Room implements HostedRoom {
     return this.players.has(playerId);
   }
 
+  /** Ticks per second over the last second and whether the room runs slowed (cheap: no percentiles). */
+  pace(): { ticksPerSecond: number; slow: boolean } {
+    return this.paceMeter.rate();
+  }
+
   /** Wall seconds this room's ticks have taken since it opened. */
   get busySeconds(): number {
     return this.busySecondsTotal;
@@ -268,7 +273,7 @@ export class Room implements HostedRoom {
 
   /** The room's summary. */
   info(): RoomInfo {
-    return { id: this.id, scenario: this.scenarioName, clients: this.players.size, tick: this.sim.tick, bodies: this.lastBodyCount, params: this.params, ...this.pace.report() };
+    return { id: this.id, scenario: this.scenarioName, clients: this.players.size, tick: this.sim.tick, bodies: this.lastBodyCount, params: this.params, ...this.paceMeter.report() };
   }
 
   /** Adds a member as a new player; its join goes into the next tick's record. Throws RoomError when refused. */
@@ -415,7 +420,7 @@ export class Room implements HostedRoom {
     m.ticks.inc();
     if (this.players.size === 0 && (this.opts.pauseWhenEmpty ?? true) && this.pendingLeaves.length === 0) {
       this.tickClock.stop();
-      this.pace.paused();
+      this.paceMeter.paused();
     }
     this.deliver(tick, events);
     for (const fn of this.tickListeners) fn(record, events);
@@ -424,7 +429,7 @@ export class Room implements HostedRoom {
     const cpuSeconds = (cpu.user + cpu.system) / 1e6;
     this.busySecondsTotal += seconds;
     this.cpuSecondsTotal += cpuSeconds;
-    this.pace.ticked(seconds * 1000, cpuSeconds * 1000);
+    this.paceMeter.ticked(seconds * 1000, cpuSeconds * 1000);
     m.tickDuration.observe(seconds);
     if (seconds > 1 / TICK_RATE_HZ) m.tickOverruns.inc();
   }

@@ -122,6 +122,7 @@ export class RemoteRoom implements HostedRoom {
         return null;
       },
       acknowledge: (tick) => thread.queueAck(member, tick),
+      pace: () => ({ ticksPerSecond: this.lastStatus?.ticksPerSecond ?? 0, slow: this.lastStatus?.slow ?? false }),
       serverTick: () => this.lastTick,
       missedInputTicks: () => {
         const missed = this.lastStatus?.missedInputTicks ?? [];

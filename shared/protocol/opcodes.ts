@@ -5,7 +5,7 @@
  * Bumped on any incompatible change to a message or the snapshot bit layout; hello and welcome must agree.
  * 2: hello's optional options map (seat and resume tokens); the welcome's resume fields; seat/resume codes.
  */
-export const PROTOCOL_VERSION = 2;
+export const PROTOCOL_VERSION = 3;
 
 /** Opcodes of messages a client sends to the server (1–15). */
 export const ClientOpcode = {
