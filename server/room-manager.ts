@@ -196,10 +196,11 @@ export class RoomManager {
     const room = this.opts.host ? await this.opts.host.open({ id, scenario, params, seed }) : await this.buildHere(id, scenario, params, seed);
     this.rooms.set(id, room);
     this.opts.metrics.rooms.set(this.rooms.size);
-    room.onClose(() => {
+    room.onClose((reason) => {
       this.rooms.delete(id);
       this.clearEmptyTimer(id);
       this.opts.metrics.rooms.set(this.rooms.size);
+      if (id === DEFAULT_ROOM_ID && this.opts.host) this.reopenDefault(reason);
     });
     if (id !== DEFAULT_ROOM_ID) {
       room.onEmptyChange((empty) => (empty ? this.armEmptyTimer(room) : this.clearEmptyTimer(id)));
@@ -212,6 +213,16 @@ export class RoomManager {
 
   private buildHere(id: string, scenario: string, params: Readonly<Record<string, number>>, seed: number | string): Promise<Room> {
     return openRoom({ id, scenario, params, seed }, this.opts);
+  }
+
+  // The room that always exists lost its worker (or failed there): open it again, retrying while no worker can take it.
+  private reopenDefault(reason: string, attempt = 1): void {
+    if (this.closing) return;
+    this.opts.logger.warn({ room: DEFAULT_ROOM_ID, reason, attempt }, 'the default room closed; opening it again');
+    this.opts.clock.setTimer(Math.min(5000, 250 * attempt), () => {
+      if (this.closing || this.rooms.has(DEFAULT_ROOM_ID) || this.creating.has(DEFAULT_ROOM_ID)) return;
+      this.start().catch((error: unknown) => this.reopenDefault(error instanceof Error ? error.message : String(error), attempt + 1));
+    });
   }
 
   private armEmptyTimer(room: HostedRoom): void {

@@ -76,6 +76,21 @@ describe('room workers', () => {
     await back.waitFor(() => back.frames.length > 2, 5000, 'snapshots from the reopened arena');
   });
 
+  it('opens the default room again when its worker dies', async () => {
+    server = await start(2);
+    const workers = server.game.workers!;
+    const calm = await WsTestClient.join(server.wsUrl, 'calm');
+    clients.push(calm);
+    await workers.workers().find((t) => t.rooms.has('default'))!.worker.terminate();
+    await calm.waitFor(() => calm.closed !== null, 5000, 'the default room player to be disconnected');
+    expect(calm.ofType('bye')[0]?.message).toMatch(/worker thread stopped/);
+    await waitUntil('the default room to reopen', 10_000, () => server!.game.rooms.get('default') !== undefined);
+    const again = await WsTestClient.join(server.wsUrl, 'again');
+    clients.push(again);
+    expect(again.welcome?.roomId).toBe('default');
+    await again.waitFor(() => again.frames.length > 2, 5000, 'snapshots from the reopened default room');
+  });
+
   it('gives back the WASM memory of rooms closed in a worker', async () => {
     server = await start(1);
     const worker = server.game.workers!.workers()[0];
