@@ -5,11 +5,14 @@ import type { Clock } from '../shared/clock.ts';
 import { BODY_STATE_STRIDE, BodyFlag, type Vec3Like } from '../shared/physics/index.ts';
 import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '../shared/sim/types.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
+import { NetMode } from '../shared/protocol/predict-messages.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import type { CatchUpGate } from './catch-up-budget.ts';
 import type { HostedRoom, MemberSink, RoomEntry, Seat } from './hosted-room.ts';
 import { InputBuffer, OfferResult } from './input-buffer.ts';
+import type { NetModeRequest } from './net-mode-policy.ts';
+import { PredictFeed } from './predict-feed.ts';
 import { enterRoom } from './local-seat.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
@@ -35,6 +38,8 @@ export interface RoomSimulation {
   staticDescriptors(): BodyDescriptor[];
   bodyDescriptor(id: number): BodyDescriptor | undefined | null;
   destroy(): void;
+  /** The simulation's byte checkpoint (for checkpoints in recordings), when it has one. */
+  saveCheckpointBytes?(): Uint8Array;
   /** The world's WASM heap (for /metrics), when the simulation has one. */
   readonly world?: { freeHeapBytes(): number; totalHeapBytes(): number };
 }
@@ -47,6 +52,11 @@ export interface RoomRecorder {
   afterStep(tick: number, hash: () => string): void;
   /** Writes the end record (none when the hash is null: the room failed), flushes and closes. */
   close(finalTick: number, finalHash: string | null): Promise<void>;
+  /**
+   * Calls `send` (the tick's events and frame) once the log holds the tick durably, in tick order; absent: at once.
+   * This is how nothing a client sees can be missing from the log after a crash (--durability tick).
+   */
+  release?(tick: number, send: () => void): void;
 }
 
 /** The world after one snapshot tick, shared by every member's encoder (copies: valid after the tick). */
@@ -55,6 +65,11 @@ export interface WorldFrame {
   tick: number;
   bodies: BodyStates;
   characters: readonly CharacterState[];
+  /**
+   * Descriptors of the frame's dynamic bodies as of its tick, when the frame leaves later than its tick (a durable
+   * recording holds it back until the tick is on disk) and a body spawned in it may be gone by then.
+   */
+  descriptors?: ReadonlyMap<number, BodyDescriptor>;
 }
 
 /** What a room needs from each connected member (the client session implements it). */
@@ -67,6 +82,8 @@ export interface RoomMember {
   roomClosed(reason: string): void;
   /** The room removed this member (its delivery failed); the room goes on. */
   removed(reason: string): void;
+  /** Predict mode: the framed confirmed record of `tick` (every tick, in order). */
+  deliverRecord?(tick: number, message: Uint8Array): void;
 }
 
 /** A refusal with a stable code the session forwards to the client. */
@@ -107,6 +124,12 @@ export interface RoomOptions {
   recorder?: RoomRecorder | null;
   /** The catch-up budget of the thread the room runs on (shared by its rooms). Default none. */
   catchUp?: CatchUpGate | null;
+  /** How the room serves its members (decided by net-mode-policy.ts). Default snapshot. */
+  netMode?: NetMode;
+  /** The mode the room was asked for. Default: netMode. */
+  netModeRequested?: NetModeRequest;
+  /** Why the room serves snapshots although predict was asked for or allowed. */
+  netModeNote?: string | null;
 }
 
 /** What a successful join gives the member. */
@@ -126,6 +149,10 @@ export interface RoomInfo extends PaceReport {
   tick: number;
   bodies: number;
   params: Readonly<Record<string, number>>;
+  /** 'snapshot' or 'predict'. */
+  netMode: NetMode;
+  /** Why the room serves snapshots although predict was asked for or allowed (absent otherwise). */
+  netModeNote?: string;
 }
 
 interface Player {
@@ -155,6 +182,12 @@ export class Room implements HostedRoom {
   readonly tickClock: TickClock;
   /** The members' shared snapshot and event work (format, quantized frame, framed messages). */
   readonly snapshots: SnapshotFanOut;
+  /** How the room serves its members. */
+  readonly netMode: NetMode;
+  /** The mode the room was asked for ('auto' lets the cost estimate choose). */
+  readonly netModeRequested: NetModeRequest;
+  /** Predict mode's record stream and checkpoints (null in snapshot mode). */
+  readonly predictFeed: PredictFeed | null;
   private readonly opts: RoomOptions;
   private readonly players = new Map<number, Player>();
   private pendingLeaves: number[] = [];
@@ -185,6 +218,14 @@ export class Room implements HostedRoom {
     this.params = opts.params;
     this.seed = opts.seed;
     this.paceMeter = new RoomPace(opts.clock);
+    this.netMode = opts.netMode ?? NetMode.Snapshot;
+    this.netModeRequested = opts.netModeRequested ?? this.netMode;
+    this.predictFeed = null;
+    if (this.netMode === NetMode.Predict) {
+      const save = sim.saveCheckpointBytes?.bind(sim);
+      if (!save) throw new Error(`room ${opts.id}: predict mode needs a simulation with saveCheckpointBytes()`);
+      this.predictFeed = new PredictFeed({ get tick() { return sim.tick; }, stateHash: () => sim.stateHash(), saveCheckpointBytes: save }, opts.seed);
+    }
     this.snapshots = new SnapshotFanOut({ bounds: this.bounds, isSceneStatic: (id) => this.isSceneStatic(id), describe: (id) => sim.bodyDescriptor(id) ?? undefined });
     const initial = sim.readBodyStates();
     this.lastBodyCount = initial.count;
@@ -273,7 +314,9 @@ export class Room implements HostedRoom {
 
   /** The room's summary. */
   info(): RoomInfo {
-    return { id: this.id, scenario: this.scenarioName, clients: this.players.size, tick: this.sim.tick, bodies: this.lastBodyCount, params: this.params, ...this.paceMeter.report() };
+    const info: RoomInfo = { id: this.id, scenario: this.scenarioName, clients: this.players.size, tick: this.sim.tick, bodies: this.lastBodyCount, params: this.params, netMode: this.netMode, ...this.paceMeter.report() };
+    if (this.opts.netModeNote) info.netModeNote = this.opts.netModeNote;
+    return info;
   }
 
   /** Adds a member as a new player; its join goes into the next tick's record. Throws RoomError when refused. */
@@ -422,7 +465,9 @@ export class Room implements HostedRoom {
       this.tickClock.stop();
       this.paceMeter.paused();
     }
-    this.deliver(tick, events);
+    const send = this.deliver(tick, events, this.predictFeed?.frame(record) ?? null);
+    if (this.opts.recorder?.release) this.opts.recorder.release(tick, send);
+    else send();
     for (const fn of this.tickListeners) fn(record, events);
     const seconds = (performance.now() - started) / 1000;
     const cpu = process.threadCpuUsage(cpuStarted);
@@ -434,29 +479,47 @@ export class Room implements HostedRoom {
     if (seconds > 1 / TICK_RATE_HZ) m.tickOverruns.inc();
   }
 
-  private deliver(tick: number, events: readonly SimEvent[]): void {
+  /** Does the tick's bookkeeping now and returns what sends its events and frame (possibly later, see release). */
+  private deliver(tick: number, events: readonly SimEvent[], recordMessage: Uint8Array | null): () => void {
     for (const e of events) if (e.type === 'bodyRemoved') this.sceneStatics.delete(e.bodyId); // its id may be reused
-    const members = [...this.players.values()].filter((p): p is Player & { member: RoomMember } => p.member !== null);
-    if (events.length > 0) for (const p of members) this.safely(p, () => p.member.deliverEvents(tick, events));
+    let frame: WorldFrame | null = null;
     this.snapshotAccumulator += this.opts.snapshotRateHz;
-    if (this.snapshotAccumulator + 1e-9 < TICK_RATE_HZ) {
-      return;
+    if (this.snapshotAccumulator + 1e-9 >= TICK_RATE_HZ) {
+      this.snapshotAccumulator -= TICK_RATE_HZ;
+      const bodies = this.sim.readBodyStates();
+      this.lastBodyCount = bodies.count;
+      if (this.heldCount < this.players.size) {
+        frame = {
+          tick,
+          bodies: {
+            count: bodies.count,
+            ids: bodies.ids.slice(0, bodies.count),
+            states: bodies.states.slice(0, bodies.count * BODY_STATE_STRIDE),
+            flags: bodies.flags.slice(0, bodies.count),
+          },
+          characters: this.sim.characters(),
+        };
+        if (this.opts.recorder?.release) frame.descriptors = this.captureDescriptors(frame.bodies);
+      }
     }
-    this.snapshotAccumulator -= TICK_RATE_HZ;
-    const bodies = this.sim.readBodyStates();
-    this.lastBodyCount = bodies.count;
-    if (members.length === 0) return;
-    const frame: WorldFrame = {
-      tick,
-      bodies: {
-        count: bodies.count,
-        ids: bodies.ids.slice(0, bodies.count),
-        states: bodies.states.slice(0, bodies.count * BODY_STATE_STRIDE),
-        flags: bodies.flags.slice(0, bodies.count),
-      },
-      characters: this.sim.characters(),
+    return () => {
+      if (this.closed) return;
+      const members = [...this.players.values()].filter((p): p is Player & { member: RoomMember } => p.member !== null);
+      if (recordMessage !== null) for (const p of members) this.safely(p, () => p.member.deliverRecord?.(tick, recordMessage));
+      if (events.length > 0) for (const p of members) this.safely(p, () => p.member.deliverEvents(tick, events));
+      if (frame) for (const p of members) this.safely(p, () => p.member.deliverFrame(frame));
     };
-    for (const p of members) this.safely(p, () => p.member.deliverFrame(frame));
+  }
+
+  private captureDescriptors(bodies: WorldFrame['bodies']): Map<number, BodyDescriptor> {
+    const out = new Map<number, BodyDescriptor>();
+    for (let i = 0; i < bodies.count; i++) {
+      const id = bodies.ids[i];
+      if (this.isSceneStatic(id)) continue;
+      const d = this.sim.bodyDescriptor(id);
+      if (d) out.set(id, d);
+    }
+    return out;
   }
 
   // A member that throws while taking a delivery is removed; the room and the other members carry on.

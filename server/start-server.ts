@@ -2,6 +2,7 @@
 // rooms run the registered scenarios; close(reason) shuts it all down in order (byes, rooms, recordings, sockets, logs).
 import './physics-node.ts';
 import type { AddressInfo } from 'node:net';
+import type { NetModeRequest } from './net-mode-policy.ts';
 import { createSecureContext } from 'node:tls';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -20,6 +21,7 @@ import { createTcpGate, Tarpit, type TarpitOptions } from './tcp-gate.ts';
 import { createLogger, flushLogger, type Logger } from './logger.ts';
 import { createMetrics, type ServerMetrics } from './metrics.ts';
 import { createRoomFactory, type ScenarioSource } from './room-factory.ts';
+import type { DurabilityOptions } from './recorder.ts';
 import { createStaticHandler } from './static-files.ts';
 import { attachWsGateway } from './ws-gateway.ts';
 import { WORKER_BUDGET_MS_PER_TICK } from './workers/room-cost.ts';
@@ -41,10 +43,16 @@ export interface StartServerOptions extends AccessOptions {
   seed?: number | string;
   /** Snapshots per second per client (1–60). Default 30. */
   snapshotRateHz?: number;
+  /** Net mode of rooms not asked for one ('auto': predict where the cost estimate allows). Default 'auto'. */
+  netMode?: NetModeRequest;
   /** Record every room's input log here. */
   recordDir?: string | null;
   /** A state hash record in recordings every N ticks (default 60; 1 checks every tick on replay). */
   recordHashEveryTicks?: number;
+  /** When recorded records reach the disk (--durability). Default tick. */
+  durability?: DurabilityOptions;
+  /** A checkpoint in recordings every N seconds of play (0: none). Default 10. */
+  checkpointEverySeconds?: number;
   /** Most clients per room. Default 32. */
   maxClients?: number;
   maxConnections?: number;
@@ -142,6 +150,8 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
             recordDir: opts.recordDir ?? null,
             recordHashEveryTicks: opts.recordHashEveryTicks,
             budgetMsPerTick: WORKER_BUDGET_MS_PER_TICK,
+            durability: opts.durability,
+            checkpointEverySeconds: opts.checkpointEverySeconds,
           },
           scenarioModules: opts.workerScenarioModules,
           logLevel: logger.level,
@@ -149,7 +159,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
         });
   const game = await GameServer.create({
     workers,
-    factory: createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null, hashEveryTicks: opts.recordHashEveryTicks }),
+    factory: createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null, hashEveryTicks: opts.recordHashEveryTicks, durability: opts.durability, checkpointEverySeconds: opts.checkpointEverySeconds }),
     defaultScenario: scenarioName,
     defaultParams: opts.params,
     seed: opts.seed,
@@ -157,6 +167,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     metrics,
     logger,
     snapshotRateHz: opts.snapshotRateHz,
+    netMode: opts.netMode,
     maxClientsPerRoom: opts.maxClients,
     maxConnections: opts.maxConnections,
     maxRooms: opts.maxRooms,

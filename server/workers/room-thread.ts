@@ -4,6 +4,7 @@
 import { Worker } from 'node:worker_threads';
 import type { InputCommand } from '../../shared/sim/input.ts';
 import { ErrorCode } from '../../shared/protocol/opcodes.ts';
+import { NetMode } from '../../shared/protocol/predict-messages.ts';
 import type { MemberSink, RoomEntry } from '../hosted-room.ts';
 import type { Logger } from '../logger.ts';
 import { RoomError } from '../room.ts';
@@ -25,7 +26,7 @@ interface Pending {
   reject(error: Error): void;
 }
 
-const emptyTraffic = (): MemberTraffic => ({ inputs: [], acks: [], pressure: [] });
+const emptyTraffic = (): MemberTraffic => ({ inputs: [], acks: [], pressure: [], netModes: [] });
 
 /** A started room worker. */
 export class RoomThread implements RoomThreadLink {
@@ -139,6 +140,11 @@ export class RoomThread implements RoomThreadLink {
     this.scheduleFlush();
   }
 
+  queueNetMode(member: number, mode: NetMode): void {
+    this.traffic.netModes.push(member, mode === NetMode.Predict ? 1 : 0);
+    this.scheduleFlush();
+  }
+
   private request(msg: Extract<ToWorker, { req: number }>): Promise<unknown> {
     if (this.deadReason !== null) return Promise.reject(new RoomError(ErrorCode.Internal, `room worker ${this.index} has stopped: ${this.deadReason}`));
     const req = this.nextReq++;
@@ -159,7 +165,7 @@ export class RoomThread implements RoomThreadLink {
       this.flushPending = false;
       const traffic = this.traffic;
       this.traffic = emptyTraffic();
-      if (traffic.inputs.length + traffic.acks.length + traffic.pressure.length > 0) this.post({ t: 'traffic', traffic });
+      if (traffic.inputs.length + traffic.acks.length + traffic.pressure.length + traffic.netModes.length > 0) this.post({ t: 'traffic', traffic });
     });
   }
 

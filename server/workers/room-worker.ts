@@ -17,7 +17,7 @@ const init = workerData as WorkerInit;
 const logger = pino({ level: init.logLevel, base: { worker: init.index } }, { write: (line: string) => port.postMessage({ t: 'log', line }) });
 const scenarios = await loadScenarioSource(init.scenarioModules);
 const rooms = new WorkerRooms({
-  factory: createRoomFactory({ scenarios, logger, recordDir: init.config.recordDir, hashEveryTicks: init.config.recordHashEveryTicks }),
+  factory: createRoomFactory({ scenarios, logger, recordDir: init.config.recordDir, hashEveryTicks: init.config.recordHashEveryTicks, durability: init.config.durability, checkpointEverySeconds: init.config.checkpointEverySeconds }),
   clock: new SystemClock(),
   metrics: createMetrics({ processMetrics: false }),
   logger,

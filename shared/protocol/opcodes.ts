@@ -4,8 +4,9 @@
 /**
  * Bumped on any incompatible change to a message or the snapshot bit layout; hello and welcome must agree.
  * 2: hello's optional options map (seat and resume tokens); the welcome's resume fields; seat/resume codes.
+ * 3: predict mode: the welcome's netMode, checkpoint and record messages, resync and netMode requests.
  */
-export const PROTOCOL_VERSION = 3;
+export const PROTOCOL_VERSION = 4;
 
 /** Opcodes of messages a client sends to the server (1–15). */
 export const ClientOpcode = {
@@ -14,6 +15,8 @@ export const ClientOpcode = {
   SnapshotAck: 3,
   Ping: 4,
   Bye: 5,
+  Resync: 6,
+  NetMode: 7,
 } as const;
 export type ClientOpcode = (typeof ClientOpcode)[keyof typeof ClientOpcode];
 
@@ -25,6 +28,8 @@ export const ServerOpcode = {
   Events: 19,
   Error: 20,
   Bye: 21,
+  Checkpoint: 22,
+  Record: 23,
 } as const;
 export type ServerOpcode = (typeof ServerOpcode)[keyof typeof ServerOpcode];
 
@@ -77,10 +82,8 @@ export const ByeReason = {
 } as const;
 export type ByeReason = (typeof ByeReason)[keyof typeof ByeReason];
 
-/** Bye reasons after which trying again later can succeed (restarts, transient overload). */
-export const RECONNECTABLE_BYE_REASONS: ReadonlySet<string> = new Set<string>([
-  ByeReason.ServerShutdown,
-  ByeReason.Timeout,
-  ByeReason.ServerFull,
-  ByeReason.RoomFull,
-]);
+/**
+ * Bye reasons after which reconnecting at once can succeed: only a timeout (the link went quiet). A shutdown, a full
+ * room or server and every refusal end the client with the server's reason; the application decides when to try again.
+ */
+export const RECONNECTABLE_BYE_REASONS: ReadonlySet<string> = new Set<string>([ByeReason.Timeout]);
