@@ -107,6 +107,8 @@ export interface NetClientStats {
   newestInputTick: number;
   /** Ticks the server repeated our previous input because the new one was late (from the last pong). */
   missedInputTicks: number | null;
+  /** The room's ticks per second over the last second and whether it runs slowed (from the last pong). */
+  roomPace: { ticksPerSecond: number; slow: boolean } | null;
   kbpsIn: number;
   bytesIn: number;
   bytesOut: number;
@@ -310,6 +312,7 @@ export class NetClient {
       leadTicks: s?.leadTicks ?? null,
       newestInputTick: s?.newestInputTick ?? -1,
       missedInputTicks: s?.serverMissedInputTicks ?? null,
+      roomPace: s?.serverRoomPace ?? null,
       kbpsIn: this.session?.kbpsIn(nowMs) ?? 0,
       bytesIn: this.session?.counters.bytesIn ?? 0,
       bytesOut: this.session?.counters.bytesOut ?? 0,

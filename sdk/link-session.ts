@@ -112,6 +112,7 @@ export class LinkSession {
   private readonly sender: InputSender;
   private lead: InputLead | null = null;
   private missedInputTicks: number | null = null;
+  private roomPace: { ticksPerSecond: number; slow: boolean } | null = null;
   private bye: ServerByeMessage | null = null;
   private errorBeforeWelcome: ErrorMessage | null = null;
   private closing = false;
@@ -158,6 +159,11 @@ export class LinkSession {
   /** The newest tick an input was generated for. */
   get newestInputTick(): number {
     return this.sender.newestTick;
+  }
+
+  /** The room's ticks per second and whether it runs slowed (last pong); null before one. */
+  get serverRoomPace(): { ticksPerSecond: number; slow: boolean } | null {
+    return this.roomPace;
   }
 
   /** Ticks the server reported it had to repeat our input (last pong). */
@@ -268,6 +274,7 @@ export class LinkSession {
         this.counters.pongs++;
         this.sync.addSample({ sentLocalMs: m.clientTimeMs, receivedLocalMs: now, serverTick: m.serverTick, serverTimeMs: m.serverTimeMs });
         this.missedInputTicks = m.missedInputTicks;
+        this.roomPace = { ticksPerSecond: m.roomTicksPerSecond, slow: m.roomSlow };
         return;
       case 'snapshot':
         this.onSnapshot(m.bytes, m.descriptors, sizeBytes, now);

@@ -6,6 +6,7 @@ import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import type { SessionAccess } from './access/admission.ts';
 import { DEFAULT_RESUME_GRACE_MS, ResumeTokens } from './access/resume-tokens.ts';
 import type { SeatTokens } from './access/seat-tokens.ts';
+import { CatchUpBudget } from './catch-up-budget.ts';
 import { SystemClock } from './clock.ts';
 import { ClientSession, DEFAULT_SESSION_LIMITS, type SessionLimits } from './client-session.ts';
 import { CloseCode, type ServerConnection } from './connection.ts';
@@ -102,8 +103,11 @@ export class GameServer {
       pauseWhenEmpty: opts.pauseWhenEmpty,
       netMode: opts.netMode,
       host: this.workers,
+      // Rooms on this thread share its loop: on the real clock, a late room may not run its catch-up ticks back to back.
+      catchUp: this.clock instanceof SystemClock ? new CatchUpBudget() : null,
     });
     this.metrics.setRoomHeapSource(() => this.roomHeaps());
+    this.metrics.setRoomPaceSource(() => this.rooms.list().map((r) => ({ room: r.id, ticksPerSecond: r.ticksPerSecond, slow: r.slow })));
   }
 
   /** Each open room's WASM heap (rooms whose simulation does not report one are left out). */

@@ -51,6 +51,8 @@ export interface Seat {
   serverTick(): number;
   /** Ticks on which this player's input had not arrived and the last one was repeated. */
   missedInputTicks(): number;
+  /** The room's ticks per second over the last second and whether it runs slowed (for the player's HUD). */
+  pace(): { ticksPerSecond: number; slow: boolean };
 }
 
 /** A room as the room manager, the sessions, the HTTP API and the resume tokens use it. */

@@ -2,6 +2,7 @@
 // The room manager uses it for rooms on the main thread, a room worker for its own rooms.
 import type { Clock } from '../shared/clock.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
+import type { CatchUpGate } from './catch-up-budget.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
 import { decideNetMode } from './net-mode-policy.ts';
@@ -19,6 +20,8 @@ export interface OpenRoomOptions {
   maxCatchUpTicks?: number;
   maxInputLeadTicks?: number;
   pauseWhenEmpty?: boolean;
+  /** The catch-up budget of the calling thread (its rooms share it). */
+  catchUp?: CatchUpGate | null;
 }
 
 /** Builds a room (not started); throws RoomError for a bad scenario or parameters, or a recording that cannot start. */
@@ -61,5 +64,6 @@ export async function openRoom(spec: RoomSpec, opts: OpenRoomOptions): Promise<R
     maxInputLeadTicks: opts.maxInputLeadTicks,
     pauseWhenEmpty: opts.pauseWhenEmpty,
     recorder,
+    catchUp: opts.catchUp,
   });
 }

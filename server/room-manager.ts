@@ -3,6 +3,7 @@
 // wherever a RoomHost opens them (the room workers).
 import type { Clock, TimerHandle } from '../shared/clock.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
+import type { CatchUpGate } from './catch-up-budget.ts';
 import type { HostedRoom } from './hosted-room.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
@@ -76,6 +77,8 @@ export interface RoomManagerOptions {
   maxCatchUpTicks?: number;
   maxInputLeadTicks?: number;
   pauseWhenEmpty?: boolean;
+  /** The catch-up budget rooms opened on this thread share. Default none. */
+  catchUp?: CatchUpGate | null;
   /** Net mode of rooms not asked for one ('auto': predict where the cost estimate allows). Default 'auto'. */
   netMode?: NetModeRequest;
   /** Where rooms are opened; default: on this thread through `factory`. */
@@ -200,10 +203,11 @@ export class RoomManager {
     const room = this.opts.host ? await this.opts.host.open(spec) : await openRoom(spec, this.opts);
     this.rooms.set(id, room);
     this.opts.metrics.rooms.set(this.rooms.size);
-    room.onClose(() => {
+    room.onClose((reason) => {
       this.rooms.delete(id);
       this.clearEmptyTimer(id);
       this.opts.metrics.rooms.set(this.rooms.size);
+      if (id === DEFAULT_ROOM_ID && this.opts.host) this.reopenDefault(reason);
     });
     if (id !== DEFAULT_ROOM_ID) {
       room.onEmptyChange((empty) => (empty ? this.armEmptyTimer(room) : this.clearEmptyTimer(id)));
@@ -213,6 +217,16 @@ export class RoomManager {
     const info = room.info();
     this.opts.logger.info({ room: id, scenario, params: room.params, netMode: info.netMode, netModeNote: info.netModeNote }, 'room opened');
     return room;
+  }
+
+  // The room that always exists lost its worker (or failed there): open it again, retrying while no worker can take it.
+  private reopenDefault(reason: string, attempt = 1): void {
+    if (this.closing) return;
+    this.opts.logger.warn({ room: DEFAULT_ROOM_ID, reason, attempt }, 'the default room closed; opening it again');
+    this.opts.clock.setTimer(Math.min(5000, 250 * attempt), () => {
+      if (this.closing || this.rooms.has(DEFAULT_ROOM_ID) || this.creating.has(DEFAULT_ROOM_ID)) return;
+      this.start().catch((error: unknown) => this.reopenDefault(error instanceof Error ? error.message : String(error), attempt + 1));
+    });
   }
 
   private armEmptyTimer(room: HostedRoom): void {

@@ -26,6 +26,7 @@ import type { DurabilityOptions } from './recorder.ts';
 import { checkReplayLog, withReplayLog } from './replay-log.ts';
 import { createStaticHandler } from './static-files.ts';
 import { attachWsGateway } from './ws-gateway.ts';
+import { WORKER_BUDGET_MS_PER_TICK } from './workers/room-cost.ts';
 import { WorkerPool } from './workers/worker-pool.ts';
 
 /** Where the built browser client is served from by default. */
@@ -155,6 +156,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
             maxClientsPerRoom: opts.maxClients ?? 32,
             recordDir: opts.recordDir ?? null,
             recordHashEveryTicks: opts.recordHashEveryTicks,
+            budgetMsPerTick: WORKER_BUDGET_MS_PER_TICK,
             durability: opts.durability,
             checkpointEverySeconds: opts.checkpointEverySeconds,
           },

@@ -48,6 +48,9 @@ export function openSession(wsUrl: string, opts: { name: string; room: string | 
     get newestInputTick() {
       return client.stats().newestInputTick;
     },
+    get roomPace() {
+      return client.stats().roomPace;
+    },
     frame(nowMs: number): SessionFrame {
       const f = client.sample(nowMs);
       return { view: f.view, renderTick: f.renderTick, bufferDepth: f.bufferDepth, delayMs: f.delayMs };
@@ -67,6 +70,7 @@ function closedSession(): NetSession {
     rttMs: null,
     inputLeadTicks: null,
     newestInputTick: -1,
+    roomPace: null,
     frame: () => ({ view: null, renderTick: 0, bufferDepth: 0, delayMs: 0 }),
     setInput: () => undefined,
     close: () => undefined,

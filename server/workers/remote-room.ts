@@ -67,7 +67,17 @@ export class RemoteRoom implements HostedRoom {
 
   info(): RoomInfo {
     const s = this.lastStatus;
-    return { ...this.opened, clients: this.players.size, tick: this.lastTick, bodies: s ? s.bodies : this.opened.bodies };
+    return {
+      ...this.opened,
+      clients: this.players.size,
+      tick: this.lastTick,
+      bodies: s ? s.bodies : this.opened.bodies,
+      ticksPerSecond: s ? s.ticksPerSecond : this.opened.ticksPerSecond,
+      slow: s ? s.slow : this.opened.slow,
+      tickMsP99: s ? s.tickMsP99 : this.opened.tickMsP99,
+      tickCpuMsP99: s ? s.tickCpuMsP99 : this.opened.tickCpuMsP99,
+      tickGapMsMax: s ? s.tickGapMsMax : this.opened.tickGapMsMax,
+    };
   }
 
   heapUsage(): { usedBytes: number; freeBytes: number } | null {
@@ -120,6 +130,7 @@ export class RemoteRoom implements HostedRoom {
         return null;
       },
       acknowledge: (tick) => thread.queueAck(member, tick),
+      pace: () => ({ ticksPerSecond: this.lastStatus?.ticksPerSecond ?? 0, slow: this.lastStatus?.slow ?? false }),
       setNetMode: (mode) => thread.queueNetMode(member, mode),
       serverTick: () => this.lastTick,
       missedInputTicks: () => {
