@@ -11,7 +11,7 @@ import { ClientSession, DEFAULT_SESSION_LIMITS, type SessionLimits } from './cli
 import { CloseCode, type ServerConnection } from './connection.ts';
 import { createLogger, type Logger } from './logger.ts';
 import { createMetrics, type ServerMetrics } from './metrics.ts';
-import type { RoomInfo } from './room.ts';
+import type { Room, RoomInfo } from './room.ts';
 import { RoomManager, type RoomFactory } from './room-manager.ts';
 
 /** Options of GameServer.create. */
@@ -42,6 +42,10 @@ export interface GameServerOptions {
   seats?: SeatTokens | null;
   /** Refuse hellos without a valid seat token. Needs `seats`. Default false. */
   requireSeat?: boolean;
+  /** Runs before the default room opens (serve --resume reopens crashed rooms here, the default one included). */
+  beforeDefaultRoom?: (server: GameServer) => Promise<void>;
+  /** Hears every resume token issued, by key (recordings keep them for --resume). */
+  onResumeTokenIssued?: (room: Room, playerId: number, key: string) => void;
 }
 
 /** The server core. */
@@ -72,7 +76,7 @@ export class GameServer {
     const seats = opts.seats ?? null;
     if (opts.requireSeat === true && seats === null) throw new Error('requireSeat needs seat tokens (a join secret) to check');
     this.access = {
-      resume: graceMs > 0 ? new ResumeTokens({ clock: this.clock, graceMs, logger: this.logger }) : null,
+      resume: graceMs > 0 ? new ResumeTokens({ clock: this.clock, graceMs, logger: this.logger, onIssue: opts.onResumeTokenIssued }) : null,
       seats,
       requireSeat: opts.requireSeat ?? false,
     };
@@ -108,6 +112,7 @@ export class GameServer {
   /** Builds the server and opens its default room (throws a clear Error for a bad scenario or parameters). */
   static async create(opts: GameServerOptions): Promise<GameServer> {
     const server = new GameServer(opts);
+    await opts.beforeDefaultRoom?.(server);
     try {
       await server.rooms.start();
     } catch (error) {

@@ -6,6 +6,7 @@ import { join } from 'node:path';
 import type { TickInputRecord } from '../shared/sim/types.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import { GroupCommit } from './log/group-commit.ts';
+import { appendResumeKey } from './log/resume-keys.ts';
 import { installedJoltVersion, LogWriter, type LogHeaderInit } from './log/index.ts';
 import type { Logger } from './logger.ts';
 import type { RoomRecorder } from './room.ts';
@@ -66,6 +67,8 @@ export interface RoomRecorderOptions {
   checkpoint?: () => Uint8Array;
   /** Go on appending to this log (a resumed room) instead of creating one. */
   continueLog?: ContinuedLog;
+  /** Called once when the recording closes or fails. */
+  onClose?: () => void;
 }
 
 /** A running recording: the room's recorder plus what the server reports about it. */
@@ -74,6 +77,8 @@ export interface RoomRecording extends RoomRecorder {
   readonly durability: DurabilityMode;
   /** Writes + fdatasyncs issued for durability (tick and interval modes). */
   readonly syncs: number;
+  /** Keeps a resume token's key beside the log (durably, before the welcome carrying the token leaves). */
+  rememberResumeKey(playerId: number, key: string): void;
 }
 
 async function openWriter(opts: RoomRecorderOptions, mode: DurabilityMode): Promise<{ writer: LogWriter; path: string; fresh: boolean }> {
@@ -132,6 +137,7 @@ export async function createRoomRecorder(opts: RoomRecorderOptions): Promise<Roo
   const stop = (error: unknown): void => {
     if (failed) return;
     failed = true;
+    opts.onClose?.();
     if (timer) clearInterval(timer);
     opts.logger.error({ room: opts.roomId, path, err: error }, 'recording failed; the room goes on without it');
     void writer.abandon().catch(() => undefined);
@@ -164,6 +170,14 @@ export async function createRoomRecorder(opts: RoomRecorderOptions): Promise<Roo
     get syncs(): number {
       return syncs + (commit?.syncs ?? 0);
     },
+    rememberResumeKey(playerId: number, key: string): void {
+      if (failed) return;
+      try {
+        appendResumeKey(path, playerId, key);
+      } catch (error) {
+        opts.logger.error({ room: opts.roomId, path, playerId, err: error }, 'cannot keep a resume key beside the recording: after a restart this player cannot come back');
+      }
+    },
     append(record: TickInputRecord): void {
       if (failed) return;
       try {
@@ -184,6 +198,7 @@ export async function createRoomRecorder(opts: RoomRecorderOptions): Promise<Roo
     async close(finalTick: number, finalHash: string | null): Promise<void> {
       if (failed) return;
       failed = true;
+      opts.onClose?.();
       if (timer) clearInterval(timer);
       commit?.clear();
       if (finalHash === null || finalTick !== writer.ticks) {

@@ -174,6 +174,20 @@ export class RoomManager {
       built.sim.destroy();
       throw new RoomError(ErrorCode.Internal, `cannot start the recording of room ${id}: ${error instanceof Error ? error.message : String(error)}`);
     }
+    return this.open(id, scenario, built, seed, recorder);
+  }
+
+  /**
+   * Opens a room around a simulation that already ran (a log resumed after a crash, server/resume-rooms.ts) under
+   * its old id; `prepare` runs before its first tick (it restores the held players). Throws when the id is taken.
+   */
+  adopt(id: string, scenario: string, built: RoomSimulationBuild, seed: number | string, recorder: RoomRecorder | null, prepare: (room: Room) => void): Room {
+    if (this.closing) throw new RoomError(ErrorCode.Internal, 'the server is shutting down');
+    if (this.rooms.has(id) || this.creating.has(id)) throw new RoomError(ErrorCode.Internal, `room ${id} is already open`);
+    return this.open(id, scenario, built, seed, recorder, prepare);
+  }
+
+  private open(id: string, scenario: string, built: RoomSimulationBuild, seed: number | string, recorder: RoomRecorder | null, prepare?: (room: Room) => void): Room {
     const room = new Room(built.sim, {
       id,
       scenarioName: scenario,
@@ -203,6 +217,7 @@ export class RoomManager {
       room.onEmptyChange((empty) => (empty ? this.armEmptyTimer(room) : this.clearEmptyTimer(id)));
       this.armEmptyTimer(room);
     }
+    prepare?.(room);
     room.start();
     this.opts.logger.info({ room: id, scenario, params: built.params, recording: recorder !== null }, 'room opened');
     return room;

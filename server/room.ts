@@ -278,6 +278,20 @@ export class Room {
     return { playerId, joinTick, firstInputTick };
   }
 
+  /**
+   * A resumed room's players (in its world, their links gone with the crashed process) held like dropped players
+   * until they reconnect or leave; new players get ids after `lastPlayerId`. Only before the first tick.
+   */
+  restorePlayers(players: ReadonlyArray<{ playerId: number; name: string; last: InputCommand }>, lastPlayerId: number): void {
+    for (const { playerId, name, last } of players) {
+      const inputs = new InputBuffer(this.sim.tick, this.opts.maxInputLeadTicks ?? 120);
+      inputs.suspend(heldInput(last));
+      this.players.set(playerId, { playerId, name, member: null, inputs, inWorld: true });
+      this.opts.metrics.players.inc();
+    }
+    this.nextPlayerId = Math.max(this.nextPlayerId, lastPlayerId + 1);
+  }
+
   /** Removes a player; the leave goes into the next tick's record (a join not yet applied is simply dropped). */
   leave(playerId: number): void {
     const p = this.players.get(playerId);

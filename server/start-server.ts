@@ -21,6 +21,7 @@ import { createLogger, flushLogger, type Logger } from './logger.ts';
 import { createMetrics, type ServerMetrics } from './metrics.ts';
 import { createRoomFactory, type ScenarioSource } from './room-factory.ts';
 import type { DurabilityOptions } from './recorder.ts';
+import { reopenRooms, scanForResume, type ResumeScan } from './resume-rooms.ts';
 import { createStaticHandler } from './static-files.ts';
 import { attachWsGateway } from './ws-gateway.ts';
 
@@ -48,6 +49,8 @@ export interface StartServerOptions extends AccessOptions {
   durability?: DurabilityOptions;
   /** A checkpoint in recordings every N seconds of play (0: none). Default 10. */
   checkpointEverySeconds?: number;
+  /** Reopen the rooms of every interrupted recording in this directory before anything else (serve --resume). */
+  resumeDir?: string | null;
   /** Most clients per room. Default 32. */
   maxClients?: number;
   maxConnections?: number;
@@ -89,6 +92,8 @@ export interface RunningServer {
   readonly logger: Logger;
   /** Who may open a WebSocket (per-address counts, back-off). */
   readonly policy: ConnectionPolicy;
+  /** What --resume found: rooms reopened, logs refused (null without --resume). */
+  readonly resumed: ResumeScan | null;
   /** Shuts down: clients get a bye with `reason`, rooms stop, recordings end, sockets close, logs flush. Idempotent. */
   close(reason?: string): Promise<void>;
 }
@@ -128,8 +133,17 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   const policy = new ConnectionPolicy(clock, { maxSockets: opts.maxConnections ?? 256, ...opts.connectionPolicy });
   const tarpit = new Tarpit(clock, opts.tarpit);
 
+  const factory = createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null, hashEveryTicks: opts.recordHashEveryTicks, durability: opts.durability, checkpointEverySeconds: opts.checkpointEverySeconds });
+  let resumed: ResumeScan | null = null;
+  const resumeDir = opts.resumeDir ?? null;
   const game = await GameServer.create({
-    factory: createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null, hashEveryTicks: opts.recordHashEveryTicks, durability: opts.durability, checkpointEverySeconds: opts.checkpointEverySeconds }),
+    factory,
+    beforeDefaultRoom: async (server) => {
+      if (resumeDir === null) return;
+      resumed = await scanForResume(resumeDir, factory, logger);
+      await reopenRooms(server, resumed, factory, logger);
+    },
+    onResumeTokenIssued: (room, playerId, key) => factory.recordingOf(room.id)?.rememberResumeKey(playerId, key),
     defaultScenario: scenarioName,
     defaultParams: opts.params,
     seed: opts.seed,
@@ -208,6 +222,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     game,
     logger,
     policy,
+    resumed,
     close(reason = 'server shutting down') {
       closing ??= (async () => {
         await game.close(reason);

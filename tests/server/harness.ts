@@ -9,6 +9,7 @@ import { memoryPeerConnection } from '../../server/memory-peer.ts';
 import { MemoryNetwork, type MemoryNetworkOptions, type MemoryTransport } from '../../sdk/index.ts';
 import { createMetrics } from '../../server/metrics.ts';
 import { createRoomFactory, type ScenarioSource } from '../../server/room-factory.ts';
+import type { DurabilityOptions } from '../../server/recorder.ts';
 import type { Room } from '../../server/room.ts';
 import {
   decodeServerMessage,
@@ -44,6 +45,9 @@ export interface HarnessOptions {
   params?: Record<string, number>;
   snapshotRateHz?: number;
   recordDir?: string | null;
+  /** Recording durability. Default off: the harness steps ticks synchronously on a manual clock, and `tick` mode
+   *  would hold each tick's deliveries until a real fdatasync finishes (tests/server/recorder.test.ts covers it). */
+  durability?: DurabilityOptions;
   latencyMs?: number;
   limits?: Partial<SessionLimits>;
   maxClientsPerRoom?: number;
@@ -156,7 +160,7 @@ export async function startHarness(opts: HarnessOptions): Promise<Harness> {
   const clock = new ManualClock();
   const logger = opts.logger ?? silentLogger();
   const server = await GameServer.create({
-    factory: createRoomFactory({ scenarios: scenarioList(opts.scenarios), logger, recordDir: opts.recordDir ?? null }),
+    factory: createRoomFactory({ scenarios: scenarioList(opts.scenarios), logger, recordDir: opts.recordDir ?? null, durability: opts.durability ?? { mode: 'off' } }),
     defaultScenario: opts.defaultScenario ?? opts.scenarios[0].name,
     defaultParams: opts.params,
     clock,
