@@ -4,6 +4,7 @@
 // of the last welcome. One LinkSession per connection does the wire work.
 import type { Clock, TimerHandle } from '../shared/clock.ts';
 import { TOKEN_PATTERN } from '../shared/protocol/limits.ts';
+import { ByeReason } from '../shared/protocol/opcodes.ts';
 import { checkPlayerName, checkRoomId } from '../shared/protocol/validation.ts';
 import type { ErrorMessage, ServerByeMessage, WelcomeMessage } from '../shared/protocol/server-messages.ts';
 import { NEUTRAL_INPUT, validateInputCommand, type InputCommand } from '../shared/sim/input.ts';
@@ -76,8 +77,11 @@ export interface NetClientEvents {
   bye: ServerByeMessage;
   /** A server message could not be used (undecodable, snapshot without baseline, …). */
   protocolError: string;
-  /** The link dropped and another attempt is scheduled. */
-  reconnecting: { attempt: number; delayMs: number; reason: string };
+  /**
+   * The link dropped and another attempt is scheduled. `serverRestarting`: the server said it is shutting down, or
+   * an attempt found nothing listening after the link had worked (a restart: it resumes rooms with `serve --resume`).
+   */
+  reconnecting: { attempt: number; delayMs: number; reason: string; serverRestarting: boolean };
   /** The client stopped for good. */
   closed: ClosedInfo;
 }
@@ -153,6 +157,8 @@ export class NetClient {
   private attempts = 0;
   private reconnectCount = 0;
   private retryTimer: TimerHandle | null = null;
+  /** Since the last welcome: the server went away (shutdown bye, or nothing listening on a retry). */
+  private serverRestarting = false;
   private closedInfo: ClosedInfo | null = null;
   private resumeTokenValue: string | null;
   private waiters: Array<{ resolve: (w: WelcomeMessage) => void; reject: (e: Error) => void }> = [];
@@ -329,6 +335,7 @@ export class NetClient {
 
   private onWelcome(w: WelcomeMessage): void {
     this.welcomeMsg = w;
+    this.serverRestarting = false;
     this.resumeTokenValue = w.resumeToken;
     this.attempts = 0;
     this.dynamic.clear();
@@ -379,8 +386,9 @@ export class NetClient {
     }
     this.attempts++;
     const delayMs = backoffDelayMs(this.policy, this.attempts, this.random);
+    if (byeReason === ByeReason.ServerShutdown || (!info.opened && this.welcomeMsg !== null)) this.serverRestarting = true;
     this.setState('reconnecting');
-    this.emitter.emit('reconnecting', { attempt: this.attempts, delayMs, reason: why });
+    this.emitter.emit('reconnecting', { attempt: this.attempts, delayMs, reason: why, serverRestarting: this.serverRestarting });
     this.retryTimer = this.clock.setTimer(delayMs, () => {
       this.retryTimer = null;
       if (this.stateValue !== 'reconnecting') return;
