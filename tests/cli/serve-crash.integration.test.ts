@@ -122,7 +122,10 @@ describe('serve --resume after kill -9 (CLI processes)', () => {
         expect(report).toMatchObject({ status: 'ok', log: 'complete' });
         expect(report.ticks).toBeGreaterThan(resumeTick + 30);
         expect(report.hashesChecked).toBe(report.ticks + 2); // every tick's hash, the initial one and the end record
-        const records = readLogBytes(new Uint8Array(readFileSync(logPath))).entries.flatMap((e) => (e.type === 'tick' ? [e.record] : []));
+        const entries = readLogBytes(new Uint8Array(readFileSync(logPath))).entries;
+        // The drain on SIGTERM wrote a last checkpoint at the final tick, then the end record.
+        expect(entries.slice(-2).map((e) => [e.type, 'tick' in e ? e.tick : null])).toEqual([['checkpoint', report.ticks], ['end', report.ticks]]);
+        const records = entries.flatMap((e) => (e.type === 'tick' ? [e.record] : []));
         const ids = bots.map((b) => b.welcomes[0].playerId);
         expect(records.flatMap((r) => r.joins.map((j) => j.playerId)).filter((id) => ids.includes(id))).toEqual(ids.slice().sort((a, b) => a - b));
         expect(records.flatMap((r) => r.leaves).filter((id) => ids.includes(id))).toEqual([]);
