@@ -71,6 +71,22 @@ export const FIGURES: readonly FigureSpec[] = Object.freeze([
     module: 'figures/durability.ts',
   },
   {
+    name: 'resume',
+    title: 'resume',
+    detailKey: 'resume',
+    headlineKeys: ['resumeMsCheckpoints', 'resumeMsNoCheckpoints'],
+    timeLimitMs: (quick: boolean) => (quick ? min(3) : min(8)),
+    module: 'figures/resume.ts',
+  },
+  {
+    name: 'crash-loss',
+    title: 'crash loss',
+    detailKey: 'crashLoss',
+    headlineKeys: ['crashLostTicksTick', 'crashLostTicksInterval', 'crashLostTicksOff'],
+    timeLimitMs: (quick: boolean) => (quick ? min(3) : min(4)),
+    module: 'figures/crash-loss.ts',
+  },
+  {
     name: 'engine-peer',
     title: 'engine peer',
     detailKey: 'enginePeer',
@@ -122,5 +138,10 @@ export const HEADLINE_KEYS: readonly string[] = [
   'durabilityOffP50Ms',
   'durabilityOffP99Ms',
   'logBytesPerMinute',
+  'resumeMsCheckpoints',
+  'resumeMsNoCheckpoints',
+  'crashLostTicksTick',
+  'crashLostTicksInterval',
+  'crashLostTicksOff',
   'startupMs',
 ];
