@@ -4,7 +4,6 @@
 // of the last welcome. One LinkSession per connection does the wire work.
 import type { Clock, TimerHandle } from '../shared/clock.ts';
 import { TOKEN_PATTERN } from '../shared/protocol/limits.ts';
-import { ByeReason } from '../shared/protocol/opcodes.ts';
 import { checkPlayerName, checkRoomId } from '../shared/protocol/validation.ts';
 import type { ErrorMessage, ServerByeMessage, WelcomeMessage } from '../shared/protocol/server-messages.ts';
 import { NEUTRAL_INPUT, validateInputCommand, type InputCommand } from '../shared/sim/input.ts';
@@ -78,8 +77,8 @@ export interface NetClientEvents {
   /** A server message could not be used (undecodable, snapshot without baseline, …). */
   protocolError: string;
   /**
-   * The link dropped and another attempt is scheduled. `serverRestarting`: the server said it is shutting down, or
-   * an attempt found nothing listening after the link had worked (a restart: it resumes rooms with `serve --resume`).
+   * The link dropped and another attempt is scheduled. `serverRestarting`: an attempt found nothing listening after
+   * the link had worked, so the server process itself went away (a crash and restart: `serve --resume` keeps players).
    */
   reconnecting: { attempt: number; delayMs: number; reason: string; serverRestarting: boolean };
   /** The client stopped for good. */
@@ -157,7 +156,7 @@ export class NetClient {
   private attempts = 0;
   private reconnectCount = 0;
   private retryTimer: TimerHandle | null = null;
-  /** Since the last welcome: the server went away (shutdown bye, or nothing listening on a retry). */
+  /** Since the last welcome: the server went away (nothing listening on a retry). */
   private serverRestarting = false;
   private closedInfo: ClosedInfo | null = null;
   private resumeTokenValue: string | null;
@@ -386,7 +385,7 @@ export class NetClient {
     }
     this.attempts++;
     const delayMs = backoffDelayMs(this.policy, this.attempts, this.random);
-    if (byeReason === ByeReason.ServerShutdown || (!info.opened && this.welcomeMsg !== null)) this.serverRestarting = true;
+    if (!info.opened && this.welcomeMsg !== null) this.serverRestarting = true;
     this.setState('reconnecting');
     this.emitter.emit('reconnecting', { attempt: this.attempts, delayMs, reason: why, serverRestarting: this.serverRestarting });
     this.retryTimer = this.clock.setTimer(delayMs, () => {

@@ -6,7 +6,6 @@ import { join } from 'node:path';
 import type { TickInputRecord } from '../shared/sim/types.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import { GroupCommit } from './log/group-commit.ts';
-import { appendResumeKey } from './log/resume-keys.ts';
 import { installedJoltVersion, LogWriter, type LogHeaderInit } from './log/index.ts';
 import type { Logger } from './logger.ts';
 import type { RoomRecorder } from './room.ts';
@@ -47,6 +46,8 @@ export interface RoomRecorderOptions {
   dir: string;
   roomId: string;
   scenario: string;
+  /** Content hash of the scenario's module ('' for a built-in). */
+  scenarioHash?: string;
   params: Readonly<Record<string, number>>;
   seed: number | string;
   /** The simulation's tick counter when recording starts (must be 0: a log starts at the first tick). */
@@ -77,8 +78,6 @@ export interface RoomRecording extends RoomRecorder {
   readonly durability: DurabilityMode;
   /** Writes + fdatasyncs issued for durability (tick and interval modes). */
   readonly syncs: number;
-  /** Keeps a resume token's key beside the log (durably, before the welcome carrying the token leaves). */
-  rememberResumeKey(playerId: number, key: string): void;
 }
 
 async function openWriter(opts: RoomRecorderOptions, mode: DurabilityMode): Promise<{ writer: LogWriter; path: string; fresh: boolean }> {
@@ -94,6 +93,7 @@ async function openWriter(opts: RoomRecorderOptions, mode: DurabilityMode): Prom
   const header: LogHeaderInit = {
     joltVersion: installedJoltVersion(),
     scenario: opts.scenario,
+    scenarioHash: opts.scenarioHash ?? '',
     params: { ...opts.params },
     seed: opts.seed,
     tickRateHz: TICK_RATE_HZ,
@@ -169,14 +169,6 @@ export async function createRoomRecorder(opts: RoomRecorderOptions): Promise<Roo
     durability: mode,
     get syncs(): number {
       return syncs + (commit?.syncs ?? 0);
-    },
-    rememberResumeKey(playerId: number, key: string): void {
-      if (failed) return;
-      try {
-        appendResumeKey(path, playerId, key);
-      } catch (error) {
-        opts.logger.error({ room: opts.roomId, path, playerId, err: error }, 'cannot keep a resume key beside the recording: after a restart this player cannot come back');
-      }
     },
     append(record: TickInputRecord): void {
       if (failed) return;

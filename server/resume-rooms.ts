@@ -7,11 +7,24 @@ import { join } from 'node:path';
 import { NEUTRAL_INPUT, type InputCommand } from '../shared/sim/input.ts';
 import type { Simulation } from '../shared/sim/simulation.ts';
 import type { GameServer } from './game-server.ts';
-import { readResumeKeys } from './log/resume-keys.ts';
+import { appendResumeKey, readResumeKeys } from './log/resume-keys.ts';
 import { findResumePoint, type ResumePoint } from './log/resume-point.ts';
 import type { Logger } from './logger.ts';
 import type { RecordingFactory } from './room-factory.ts';
 import type { RoomSimulationBuild } from './room-manager.ts';
+
+/**
+ * Keeps a resume token's key beside the room's log (synced before the welcome carrying the token leaves), so that the
+ * player can come back after a crash; a room that does not record (null path) keeps nothing.
+ */
+export function rememberResumeKey(logPath: string | null, roomId: string, playerId: number, key: string, logger: Logger): void {
+  if (logPath === null) return;
+  try {
+    appendResumeKey(logPath, playerId, key);
+  } catch (error) {
+    logger.error({ room: roomId, path: logPath, playerId, err: error }, 'cannot keep a resume key beside the recording: after a restart this player cannot come back');
+  }
+}
 
 /** Room ids in recording file names: `<roomId>-<UTC stamp>[-<pid>-<n>].taoslog` (server/recorder.ts). */
 const LOG_NAME_RE = /^([A-Za-z0-9_-]{1,64})-(\d{8}T\d{6}Z)(?:-\d+-\d+)?\.taoslog$/;
@@ -180,7 +193,8 @@ export async function reopenRooms(server: GameServer, scan: ResumeScan, factory:
         { id: r.id, scenario: r.scenario, params: r.built.params, seed: r.seed, sim: r.built.sim },
         { path: r.path, header: p.header, ticks: p.ticks, validBytes: p.validBytes },
       );
-      const room = server.rooms.adopt(r.id, r.scenario, r.built, r.seed, recording, (room) => room.restorePlayers(r.players, Math.max(p.maxPlayerId, ...r.players.map((x) => x.playerId))));
+      const spec = { id: r.id, scenario: r.scenario, params: r.built.params, seed: r.seed };
+      const room = server.rooms.adopt(spec, r.built, recording, (room) => room.restorePlayers(r.players, Math.max(p.maxPlayerId, ...r.players.map((x) => x.playerId))));
       const resume = server.access.resume;
       for (const player of r.players) {
         const key = r.keys.get(player.playerId);

@@ -6,6 +6,7 @@ import type { ScenarioDefinition } from '../shared/sim/scenario.ts';
 import type { Logger } from './logger.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import { createRoomRecorder, DEFAULT_CHECKPOINT_EVERY_SECONDS, type ContinuedLog, type DurabilityOptions, type RoomRecording } from './recorder.ts';
+import { scenarioModuleHash } from './scenario-module.ts';
 import type { RoomFactory, RoomSimulationBuild } from './room-manager.ts';
 import type { RoomRecorder, RoomSimulation } from './room.ts';
 
@@ -43,8 +44,8 @@ export interface RoomFactoryOptions {
 export interface RecordingFactory {
   /** A recording that goes on appending to a resumed room's log. */
   continueRecording(room: { id: string; scenario: string; params: Readonly<Record<string, number>>; seed: number | string; sim: RoomSimulation }, log: ContinuedLog): Promise<RoomRecording>;
-  /** The open room's recording, if it records. */
-  recordingOf(roomId: string): RoomRecording | undefined;
+  /** The input log an open room of this factory records into (null: none). */
+  recordingPath(roomId: string): string | null;
   /** RoomFactory.createSimulation, typed with the Simulation it builds (a resume restores checkpoints into it). */
   createSimulation(name: string, params: Readonly<Record<string, number>>, seed: number | string): Promise<RoomSimulationBuild & { sim: Simulation }>;
 }
@@ -54,10 +55,11 @@ export interface RecordingFactory {
  * room's simulation: once the room closes and drops it, its Jolt module and 128 MB heap are garbage.
  */
 export function createRoomFactory(opts: RoomFactoryOptions): RecordingFactory & RoomFactory & { liveSimulations(): number } {
-  // The open rooms' recordings by room id (a recording leaves when it closes), for resume keys.
+  // The open rooms' recordings by room id (a recording leaves when it closes): resume keys go beside their logs.
   const recordings = new Map<string, RoomRecording>();
   const record = async (room: { id: string; scenario: string; params: Readonly<Record<string, number>>; seed: number | string; sim: RoomSimulation }, dir: string, continueLog?: ContinuedLog): Promise<RoomRecording> => {
     const sim = room.sim;
+    const def = opts.scenarios.get(room.scenario);
     const recording: RoomRecording = await createRoomRecorder({
       durability: opts.durability,
       checkpointEveryTicks: Math.round((opts.checkpointEverySeconds ?? DEFAULT_CHECKPOINT_EVERY_SECONDS) * TICK_RATE_HZ),
@@ -65,6 +67,7 @@ export function createRoomFactory(opts: RoomFactoryOptions): RecordingFactory & 
       dir,
       roomId: room.id,
       scenario: room.scenario,
+      scenarioHash: def ? await scenarioModuleHash(def) : '',
       params: room.params,
       seed: room.seed,
       startTick: room.sim.tick,
@@ -116,6 +119,6 @@ export function createRoomFactory(opts: RoomFactoryOptions): RecordingFactory & 
       return record(room, opts.recordDir);
     },
     continueRecording: (room, log) => record(room, '', log),
-    recordingOf: (roomId) => recordings.get(roomId),
+    recordingPath: (roomId) => recordings.get(roomId)?.path ?? null,
   };
 }

@@ -7,9 +7,12 @@ import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
+import type { HostedRoom, MemberSink, RoomEntry, Seat } from './hosted-room.ts';
 import { InputBuffer, OfferResult } from './input-buffer.ts';
+import { enterRoom } from './local-seat.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
+import { FrameDescriptors } from './frame-descriptors.ts';
 import { SnapshotFanOut } from './snapshot-fan-out.ts';
 import { TickClock } from './tick-clock.ts';
 
@@ -145,7 +148,7 @@ export function heldInput(last: InputCommand): InputCommand {
 }
 
 /** A running room; build it with `new Room(sim, opts)` and call start(). */
-export class Room {
+export class Room implements HostedRoom {
   readonly id: string;
   readonly scenarioName: string;
   readonly description: string;
@@ -162,10 +165,13 @@ export class Room {
   private nextPlayerId = 1;
   private closedReason: string | null = null;
   private snapshotAccumulator = 0;
+  private busySecondsTotal = 0;
   private lastBodyCount = 0;
   // Static bodies the scene was built with: drawn from the welcome, never in snapshots. Statics spawned later
   // (streamed terrain) travel in snapshots instead, so clients already in the room learn about them.
   private readonly sceneStatics = new Set<number>();
+  // Descriptors of the bodies in frames taken but maybe not sent yet (a held frame may outlive its bodies).
+  private readonly frameDescriptors = new FrameDescriptors();
   private readonly tickListeners = new Set<(record: TickInputRecord, events: readonly SimEvent[]) => void>();
   private readonly emptyListeners = new Set<(empty: boolean) => void>();
   private readonly closeListeners = new Set<(reason: string) => void>();
@@ -182,7 +188,7 @@ export class Room {
     this.bounds = opts.bounds ?? { min: { x: -500, y: -500, z: -500 }, max: { x: 500, y: 500, z: 500 } };
     this.params = opts.params;
     this.seed = opts.seed;
-    this.snapshots = new SnapshotFanOut({ bounds: this.bounds, isSceneStatic: (id) => this.isSceneStatic(id), describe: (id) => sim.bodyDescriptor(id) ?? undefined });
+    this.snapshots = new SnapshotFanOut({ bounds: this.bounds, isSceneStatic: (id) => this.isSceneStatic(id), describe: (id) => this.frameDescriptors.get(id) ?? sim.bodyDescriptor(id) ?? undefined });
     const initial = sim.readBodyStates();
     this.lastBodyCount = initial.count;
     for (let i = 0; i < initial.count; i++) if ((initial.flags[i] & BodyFlag.Static) !== 0) this.sceneStatics.add(initial.ids[i]);
@@ -221,9 +227,19 @@ export class Room {
     return n;
   }
 
+  /** Ids of the players in the room (connected or held). */
+  playerIds(): number[] {
+    return [...this.players.keys()];
+  }
+
   /** Whether a player is in the room (connected or held). */
   hasPlayer(playerId: number): boolean {
     return this.players.has(playerId);
+  }
+
+  /** Wall seconds this room's ticks have taken since it opened (its load on its thread). */
+  get busySeconds(): number {
+    return this.busySecondsTotal;
   }
 
   /** Whether the room has closed. */
@@ -290,6 +306,15 @@ export class Room {
       this.opts.metrics.players.inc();
     }
     this.nextPlayerId = Math.max(this.nextPlayerId, lastPlayerId + 1);
+  }
+
+  /** Seats a member (a new player, or a held one taken back) with its welcome; rejects with a RoomError when refused. */
+  enter(sink: MemberSink, entry: RoomEntry): Promise<Seat> {
+    try {
+      return Promise.resolve(enterRoom(this, sink, entry, this.opts.metrics));
+    } catch (error) {
+      return Promise.reject(error instanceof Error ? error : new Error(String(error)));
+    }
   }
 
   /** Removes a player; the leave goes into the next tick's record (a join not yet applied is simply dropped). */
@@ -402,13 +427,16 @@ export class Room {
     else send();
     for (const fn of this.tickListeners) fn(record, events);
     const seconds = (performance.now() - started) / 1000;
+    this.busySecondsTotal += seconds;
     m.tickDuration.observe(seconds);
     if (seconds > 1 / TICK_RATE_HZ) m.tickOverruns.inc();
   }
 
   /** Does the tick's bookkeeping now and returns what sends its events and frame (possibly later, see release). */
   private deliver(tick: number, events: readonly SimEvent[]): () => void {
-    for (const e of events) if (e.type === 'bodyRemoved') this.sceneStatics.delete(e.bodyId); // its id may be reused
+    // What a removal changes is applied once this tick is sent: frames taken before it may still show the body.
+    const removed = events.flatMap((e) => (e.type === 'bodyRemoved' ? [e.bodyId] : []));
+    const removals = this.frameDescriptors.removals(removed);
     let frame: WorldFrame | null = null;
     this.snapshotAccumulator += this.opts.snapshotRateHz;
     if (this.snapshotAccumulator + 1e-9 >= TICK_RATE_HZ) {
@@ -426,6 +454,7 @@ export class Room {
           },
           characters: this.sim.characters(),
         };
+        this.frameDescriptors.capture(frame.bodies.ids, frame.bodies.count, (id) => this.sceneStatics.has(id), (id) => this.sim.bodyDescriptor(id));
       }
     }
     return () => {
@@ -433,6 +462,8 @@ export class Room {
       const members = [...this.players.values()].filter((p): p is Player & { member: RoomMember } => p.member !== null);
       if (events.length > 0) for (const p of members) this.safely(p, () => p.member.deliverEvents(tick, events));
       if (frame) for (const p of members) this.safely(p, () => p.member.deliverFrame(frame));
+      for (const id of removed) this.sceneStatics.delete(id); // its id may be reused
+      this.frameDescriptors.release(removals);
     };
   }
 

@@ -21,9 +21,10 @@ import { createLogger, flushLogger, type Logger } from './logger.ts';
 import { createMetrics, type ServerMetrics } from './metrics.ts';
 import { createRoomFactory, type ScenarioSource } from './room-factory.ts';
 import type { DurabilityOptions } from './recorder.ts';
-import { reopenRooms, scanForResume, type ResumeScan } from './resume-rooms.ts';
+import { rememberResumeKey, reopenRooms, scanForResume, type ResumeScan } from './resume-rooms.ts';
 import { createStaticHandler } from './static-files.ts';
 import { attachWsGateway } from './ws-gateway.ts';
+import { WorkerPool } from './workers/worker-pool.ts';
 
 const REPO_ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 /** Where the built browser client is served from by default. */
@@ -78,6 +79,10 @@ export interface StartServerOptions extends AccessOptions {
   tarpit?: TarpitOptions;
   /** Serve HTTPS and WSS with this certificate chain and private key (PEM). Default: plain HTTP and WS. */
   tls?: { cert: string | Buffer; key: string | Buffer };
+  /** Room worker threads to run the rooms in (0: every room on the main thread, as before). Default 0. */
+  roomWorkers?: number;
+  /** Modules exporting ScenarioDefinitions the room workers offer beside the registry (file URLs; tests' own scenes). */
+  workerScenarioModules?: readonly string[];
 }
 
 /** A listening server. */
@@ -133,17 +138,37 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   const policy = new ConnectionPolicy(clock, { maxSockets: opts.maxConnections ?? 256, ...opts.connectionPolicy });
   const tarpit = new Tarpit(clock, opts.tarpit);
 
+  const roomWorkers = opts.roomWorkers ?? 0;
+  if (!Number.isInteger(roomWorkers) || roomWorkers < 0) throw new Error(`room workers must be a whole number ≥ 0, got ${roomWorkers}`);
+  const workers =
+    roomWorkers === 0
+      ? null
+      : await WorkerPool.start({
+          count: roomWorkers,
+          config: {
+            snapshotRateHz: opts.snapshotRateHz ?? 30,
+            maxClientsPerRoom: opts.maxClients ?? 32,
+            recordDir: opts.recordDir ?? null,
+            recordHashEveryTicks: opts.recordHashEveryTicks,
+            durability: opts.durability,
+            checkpointEverySeconds: opts.checkpointEverySeconds,
+          },
+          scenarioModules: opts.workerScenarioModules,
+          logLevel: logger.level,
+          logger,
+        });
   const factory = createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null, hashEveryTicks: opts.recordHashEveryTicks, durability: opts.durability, checkpointEverySeconds: opts.checkpointEverySeconds });
   let resumed: ResumeScan | null = null;
   const resumeDir = opts.resumeDir ?? null;
   const game = await GameServer.create({
+    workers,
     factory,
     beforeDefaultRoom: async (server) => {
       if (resumeDir === null) return;
       resumed = await scanForResume(resumeDir, factory, logger);
       await reopenRooms(server, resumed, factory, logger);
     },
-    onResumeTokenIssued: (room, playerId, key) => factory.recordingOf(room.id)?.rememberResumeKey(playerId, key),
+    onResumeTokenIssued: (room, playerId, key) => rememberResumeKey(room.recordingPath ?? factory.recordingPath(room.id), room.id, playerId, key, logger),
     defaultScenario: scenarioName,
     defaultParams: opts.params,
     seed: opts.seed,

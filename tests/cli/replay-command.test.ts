@@ -25,7 +25,7 @@ let log: Uint8Array;
 
 beforeAll(async () => {
   dir = await mkdtemp(join(tmpdir(), 'taos-replay-'));
-  logPath = join(dir, 'course.tlog');
+  logPath = join(dir, 'course.taoslog');
   const r = await cli('record', '--scenario', 'character-course', '--bots', '3', '--ticks', '120', '--out', logPath, '--checkpoint-every', '40');
   if (r.code !== 0) throw new Error(r.stderr);
   log = new Uint8Array(await readFile(logPath)); // a plain copy: Buffer.slice would alias
@@ -57,7 +57,7 @@ describe('replay-command', () => {
       c.input.moveX = c.input.moveX === 127 ? -127 : 127;
       c.input.moveZ = -127;
     });
-    const path = join(dir, 'retouched.tlog');
+    const path = join(dir, 'retouched.taoslog');
     await writeFile(path, tampered);
     const r = await cli('replay', path, '--json');
     expect(r.code).toBe(1);
@@ -79,7 +79,7 @@ describe('replay-command', () => {
     const victim = entriesOf(log).find((e) => e.type === 'tick' && e.record.tick === 70)!;
     const bad = log.slice();
     bad[victim.offset + Math.floor(victim.sizeBytes / 2)] ^= 0x04;
-    const path = join(dir, 'flipped.tlog');
+    const path = join(dir, 'flipped.taoslog');
     await writeFile(path, bad);
     const r = await cli('replay', path, '--json');
     expect(r.code).toBe(1);
@@ -95,7 +95,7 @@ describe('replay-command', () => {
       rec.joins = [{ playerId: rec.commands[0].playerId, name: 'again' }]; // a player who is already in the game
     });
     const victim = entriesOf(tampered).find((e) => e.type === 'tick' && e.record.tick === 60)!;
-    const path = join(dir, 'unapplicable.tlog');
+    const path = join(dir, 'unapplicable.taoslog');
     await writeFile(path, tampered);
     const out = jsonOut(await cli('replay', path, '--json'));
     expect(out).toMatchObject({ status: 'corrupt', log: 'corrupt', ticks: 60, hashesChecked: 61 });
@@ -104,7 +104,7 @@ describe('replay-command', () => {
 
   it('replays the whole records of a truncated log and says the tail was dropped', async () => {
     const cutAt = entriesOf(log).find((e) => e.type === 'tick' && e.record.tick === 100)!;
-    const path = join(dir, 'truncated.tlog');
+    const path = join(dir, 'truncated.taoslog');
     await writeFile(path, log.subarray(0, cutAt.offset + 3));
     const out = jsonOut(await cli('replay', path, '--json'));
     expect(out).toMatchObject({ status: 'ok', log: 'truncated', ticks: 100, hashesChecked: 101 });
@@ -137,7 +137,7 @@ describe('replay-command', () => {
     const hash80 = entries.find((e) => e.type === 'hash' && e.tick === 80)!;
     const bad = log.slice();
     // Rewrite the recorded hash at tick 80 (fixing its CRC) so the checkpoint restored there cannot match it.
-    const path = join(dir, 'bad-hash.tlog');
+    const path = join(dir, 'bad-hash.taoslog');
     await writeFile(path, rewriteHash(bad, hash80.offset, hash80.sizeBytes));
     const out = jsonOut(await cli('replay', path, '--json', '--from', '80'));
     expect(out).toMatchObject({ status: 'diverged', startTick: 80, ticks: 0 });
@@ -145,7 +145,7 @@ describe('replay-command', () => {
   });
 
   it('exits 1 when the log names a scenario or parameters this build does not have', async () => {
-    const path = join(dir, 'foreign.tlog');
+    const path = join(dir, 'foreign.taoslog');
     await writeFile(path, buildLog(3)); // shape-rain with a "spread" parameter it does not declare
     const r = await cli('replay', path);
     expect(r.code).toBe(1);

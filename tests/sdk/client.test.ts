@@ -209,7 +209,7 @@ describe('client', () => {
     expect(closed).toMatch(/^unreachable: gave up after 3 attempts/);
   });
 
-  it('tells a dropped link from a server that went away: a retry that finds nothing listening, or a shutdown bye', () => {
+  it('tells a dropped link from a server that went away: a retry that finds nothing listening', () => {
     const w = world();
     const client = w.open({ reconnect: { baseDelayMs: 100 } });
     w.clock.advance(500);
@@ -225,10 +225,11 @@ describe('client', () => {
     restarted.start();
     w.clock.advance(1000);
     expect(client.state).toBe('connected');
-    restarted.kick(restarted.sessions.at(-1)!, ByeReason.ServerShutdown, 'restarting');
-    w.clock.advance(1000);
-    // drop; drop (the link had worked); two refused attempts; the shutdown bye
-    expect(seen).toEqual([false, false, true, true, true]);
+    // drop; drop (the link had worked); two attempts that found nothing listening
+    expect(seen).toEqual([false, false, true, true]);
+    w.net.dropAll(); // back to a plain drop: the welcome cleared the restart
+    w.clock.advance(1);
+    expect(seen.at(-1)).toBe(false);
     client.close();
   });
 
@@ -247,15 +248,39 @@ describe('client', () => {
     await expect(client.whenConnected()).rejects.toThrow(/kicked/);
   });
 
-  it('reconnects after a server shutdown bye', () => {
+  it('ends with the server-shutdown reason after a shutdown bye and does not reconnect', () => {
     const w = world();
     const client = w.open();
     w.clock.advance(500);
+    const reconnects: number[] = [];
+    client.on('reconnecting', (r) => reconnects.push(r.attempt));
     w.server.kick(w.server.sessions[0], ByeReason.ServerShutdown, 'restarting');
+    w.clock.advance(5000);
+    expect(client.state).toBe('closed');
+    expect(client.closed).toEqual({ reason: 'server-shutdown', detail: 'server-shutdown: restarting' });
+    expect(reconnects).toEqual([]);
+    expect(w.net.connectionCount).toBe(1);
+  });
+
+  it('reconnects after a timeout bye', () => {
+    const w = world();
+    const client = w.open();
+    w.clock.advance(500);
+    w.server.kick(w.server.sessions[0], ByeReason.Timeout, 'no ping for 10 s');
     w.clock.advance(1000);
     expect(client.state).toBe('connected');
     expect(w.net.connectionCount).toBe(2);
     client.close();
+  });
+
+  it('gives up at once when the room is full', async () => {
+    const w = world({ server: { refuseWith: { code: ErrorCode.RoomFull, byeReason: ByeReason.RoomFull } } });
+    const client = w.open();
+    const connected = client.whenConnected();
+    w.clock.advance(5000);
+    await expect(connected).rejects.toThrow(/room-full/);
+    expect(client.closed?.reason).toBe('room-full');
+    expect(w.net.connectionCount).toBe(1);
   });
 
   it('gives up at once when the server refuses the room, and on a protocol version mismatch', async () => {

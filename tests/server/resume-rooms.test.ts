@@ -100,7 +100,7 @@ describe('serve --resume (in-process)', () => {
       expect(refused).toHaveLength(1);
       expect(refused[0]).toMatchObject({ path: join(dir, 'arena-20260101T000000Z.taoslog'), recordIndex: tickEntry(unterminated, 50).index });
       expect(server.game.rooms.get('arena')).toBeUndefined();
-      const room = server.game.rooms.get('default')!;
+      const room = server.game.rooms.local('default')!;
       expect(room.sim.tick).toBeGreaterThanOrEqual(200);
       // No resume keys beside the log: the held players leave on the first tick (then the empty room pauses).
       const deadline = Date.now() + 5000;

@@ -84,7 +84,7 @@ describe('resume over real sockets', () => {
   it('reconnects a client whose connection was cut with its resume token: same player and character, no leave or join, exact replay', async () => {
     const dir = join(tmp, 'rec');
     server = await startServer({ port: 0, scenario: 'character-course', recordDir: dir, logger: silentLogger(), metrics: createMetrics({ processMetrics: false }), clientDir: join(tmp, 'no-client') });
-    const room = server.game.rooms.get('default')!;
+    const room = server.game.rooms.local('default')!;
     const records: TickInputRecord[] = [];
     room.onTick((r) => records.push(structuredClone(r)));
     relay = await startRelay(server.port);
@@ -122,7 +122,7 @@ describe('resume over real sockets', () => {
     bob.close();
     await server.close('test over');
     server = null;
-    const report = await replayLog(join(dir, readdirSync(dir)[0]));
+    const report = await replayLog(join(dir, readdirSync(dir).filter((f) => f.endsWith('.taoslog'))[0]));
     expect(report.status).toBe('ok');
     expect(report.log).toBe('complete');
     expect(report.ticks).toBe(records.at(-1)!.tick + 1);
