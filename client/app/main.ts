@@ -170,7 +170,7 @@ function join(room: string | null, name: string): void {
     onReconnecting(attempt, reason, serverRestarting) {
       page.connected = false;
       page.phase = 'connecting';
-      if (serverRestarting) showMessage('Server restarted, rejoining', `Your player is kept for you: rejoining (attempt ${attempt})…`, 'info');
+      if (serverRestarting) showMessage('Server restarted, rejoining', `The server went away and is coming back: rejoining (attempt ${attempt})…`, 'info');
       else showMessage('Connection lost', `${reason}\nReconnecting (attempt ${attempt})…`, 'info');
     },
     onNotice(line) {
