@@ -129,6 +129,8 @@ export async function scanForResume(dir: string, factory: RecordingFactory, logg
   try {
     names = (await readdir(dir)).filter((n) => n.endsWith('.taoslog')).sort();
   } catch (err) {
+    // The first start of a server that always runs with --resume: nothing recorded yet, nothing to resume.
+    if ((err as NodeJS.ErrnoException).code === 'ENOENT') return scan;
     throw new Error(`cannot read the --resume directory ${dir}: ${(err as Error).message}`, { cause: err });
   }
   const newest = new Map<string, string>();

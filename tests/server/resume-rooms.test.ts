@@ -120,6 +120,18 @@ describe('serve --resume (in-process)', () => {
     }
   });
 
+  it('starts with nothing to resume when the directory does not exist yet, and records into it', async () => {
+    const dir = join(root, 'fresh', 'rec');
+    const server = await startServer({ port: 0, resumeDir: dir, recordDir: dir, logger: silentLogger(), metrics: createMetrics({ processMetrics: false }), clientDir: '/nonexistent-client-dir' });
+    try {
+      expect(server.resumed).toEqual({ rooms: [], refused: [], complete: [] });
+      expect(server.game.rooms.get('default')).toBeDefined();
+    } finally {
+      await server.close('test over');
+    }
+    expect((await readdir(dir)).filter((f) => f.endsWith('.taoslog'))).toHaveLength(1);
+  });
+
   it('resumes a log whose last records are torn from its last intact tick and keeps the cut bytes aside', async () => {
     const last = tickEntry(unterminated, 199);
     const damaged = zeroTail(unterminated, last.offset + 3);
