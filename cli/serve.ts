@@ -40,6 +40,7 @@ export async function runServe(opts: ServeOptions, io: CliIo): Promise<number> {
     for (const r of server.resumed.refused) io.stderr(`not resumed: ${r.path}: ${r.reason}\n`);
   }
   io.stdout(`taos-physics serving ${what} at ${server.url} (WebSocket ${server.wsUrl}); Ctrl+C stops\n`);
+  if (opts.replayFile) io.stdout(`replay viewer for ${opts.replayFile}: ${new URL('/replay', server.url).href}\n`);
   return new Promise<number>((resolve) => {
     const { uninstall } = installShutdown(server, {
       logger,

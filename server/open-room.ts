@@ -4,6 +4,7 @@ import type { Clock } from '../shared/clock.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
+import { decideNetMode } from './net-mode-policy.ts';
 import { Room, RoomError, type RoomRecorder } from './room.ts';
 import type { RoomFactory, RoomSimulationBuild, RoomSpec } from './room-manager.ts';
 
@@ -42,8 +43,13 @@ export async function openRoom(spec: RoomSpec, opts: OpenRoomOptions): Promise<R
 /** The Room (not started) around a built simulation and its recorder (a resumed room's comes from its log). */
 export function roomAround(spec: RoomSpec, built: RoomSimulationBuild, recorder: RoomRecorder | null, opts: Omit<OpenRoomOptions, 'factory'>): Room {
   const { id, scenario, seed } = spec;
+  const netModeRequested = spec.netMode ?? 'auto';
+  const decision = decideNetMode(netModeRequested, scenario, built.params);
   return new Room(built.sim, {
     id,
+    netMode: decision.mode,
+    netModeRequested,
+    netModeNote: decision.note,
     scenarioName: scenario,
     description: built.description,
     bounds: built.bounds,

@@ -5,14 +5,16 @@ import type { Clock } from '../shared/clock.ts';
 import { BODY_STATE_STRIDE, BodyFlag, type Vec3Like } from '../shared/physics/index.ts';
 import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '../shared/sim/types.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
+import { NetMode } from '../shared/protocol/predict-messages.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import type { HostedRoom, MemberSink, RoomEntry, Seat } from './hosted-room.ts';
 import { InputBuffer, OfferResult } from './input-buffer.ts';
+import type { NetModeRequest } from './net-mode-policy.ts';
+import { PredictFeed } from './predict-feed.ts';
 import { enterRoom } from './local-seat.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
-import { FrameDescriptors } from './frame-descriptors.ts';
 import { SnapshotFanOut } from './snapshot-fan-out.ts';
 import { TickClock } from './tick-clock.ts';
 
@@ -61,6 +63,11 @@ export interface WorldFrame {
   tick: number;
   bodies: BodyStates;
   characters: readonly CharacterState[];
+  /**
+   * Descriptors of the frame's dynamic bodies as of its tick, when the frame leaves later than its tick (a durable
+   * recording holds it back until the tick is on disk) and a body spawned in it may be gone by then.
+   */
+  descriptors?: ReadonlyMap<number, BodyDescriptor>;
 }
 
 /** What a room needs from each connected member (the client session implements it). */
@@ -73,6 +80,8 @@ export interface RoomMember {
   roomClosed(reason: string): void;
   /** The room removed this member (its delivery failed); the room goes on. */
   removed(reason: string): void;
+  /** Predict mode: the framed confirmed record of `tick` (every tick, in order). */
+  deliverRecord?(tick: number, message: Uint8Array): void;
 }
 
 /** A refusal with a stable code the session forwards to the client. */
@@ -111,6 +120,12 @@ export interface RoomOptions {
   /** Stop ticking while nobody is in the room. Default true. */
   pauseWhenEmpty?: boolean;
   recorder?: RoomRecorder | null;
+  /** How the room serves its members (decided by net-mode-policy.ts). Default snapshot. */
+  netMode?: NetMode;
+  /** The mode the room was asked for. Default: netMode. */
+  netModeRequested?: NetModeRequest;
+  /** Why the room serves snapshots although predict was asked for or allowed. */
+  netModeNote?: string | null;
 }
 
 /** What a successful join gives the member. */
@@ -130,6 +145,10 @@ export interface RoomInfo {
   tick: number;
   bodies: number;
   params: Readonly<Record<string, number>>;
+  /** 'snapshot' or 'predict'. */
+  netMode: NetMode;
+  /** Why the room serves snapshots although predict was asked for or allowed (absent otherwise). */
+  netModeNote?: string;
 }
 
 interface Player {
@@ -159,6 +178,12 @@ export class Room implements HostedRoom {
   readonly tickClock: TickClock;
   /** The members' shared snapshot and event work (format, quantized frame, framed messages). */
   readonly snapshots: SnapshotFanOut;
+  /** How the room serves its members. */
+  readonly netMode: NetMode;
+  /** The mode the room was asked for ('auto' lets the cost estimate choose). */
+  readonly netModeRequested: NetModeRequest;
+  /** Predict mode's record stream and checkpoints (null in snapshot mode). */
+  readonly predictFeed: PredictFeed | null;
   private readonly opts: RoomOptions;
   private readonly players = new Map<number, Player>();
   private pendingLeaves: number[] = [];
@@ -170,8 +195,6 @@ export class Room implements HostedRoom {
   // Static bodies the scene was built with: drawn from the welcome, never in snapshots. Statics spawned later
   // (streamed terrain) travel in snapshots instead, so clients already in the room learn about them.
   private readonly sceneStatics = new Set<number>();
-  // Descriptors of the bodies in frames taken but maybe not sent yet (a held frame may outlive its bodies).
-  private readonly frameDescriptors = new FrameDescriptors();
   private readonly tickListeners = new Set<(record: TickInputRecord, events: readonly SimEvent[]) => void>();
   private readonly emptyListeners = new Set<(empty: boolean) => void>();
   private readonly closeListeners = new Set<(reason: string) => void>();
@@ -188,7 +211,15 @@ export class Room implements HostedRoom {
     this.bounds = opts.bounds ?? { min: { x: -500, y: -500, z: -500 }, max: { x: 500, y: 500, z: 500 } };
     this.params = opts.params;
     this.seed = opts.seed;
-    this.snapshots = new SnapshotFanOut({ bounds: this.bounds, isSceneStatic: (id) => this.isSceneStatic(id), describe: (id) => this.frameDescriptors.get(id) ?? sim.bodyDescriptor(id) ?? undefined });
+    this.netMode = opts.netMode ?? NetMode.Snapshot;
+    this.netModeRequested = opts.netModeRequested ?? this.netMode;
+    this.predictFeed = null;
+    if (this.netMode === NetMode.Predict) {
+      const save = sim.saveCheckpointBytes?.bind(sim);
+      if (!save) throw new Error(`room ${opts.id}: predict mode needs a simulation with saveCheckpointBytes()`);
+      this.predictFeed = new PredictFeed({ get tick() { return sim.tick; }, stateHash: () => sim.stateHash(), saveCheckpointBytes: save }, opts.seed);
+    }
+    this.snapshots = new SnapshotFanOut({ bounds: this.bounds, isSceneStatic: (id) => this.isSceneStatic(id), describe: (id) => sim.bodyDescriptor(id) ?? undefined });
     const initial = sim.readBodyStates();
     this.lastBodyCount = initial.count;
     for (let i = 0; i < initial.count; i++) if ((initial.flags[i] & BodyFlag.Static) !== 0) this.sceneStatics.add(initial.ids[i]);
@@ -263,7 +294,9 @@ export class Room implements HostedRoom {
 
   /** The room's summary. */
   info(): RoomInfo {
-    return { id: this.id, scenario: this.scenarioName, clients: this.players.size, tick: this.sim.tick, bodies: this.lastBodyCount, params: this.params };
+    const info: RoomInfo = { id: this.id, scenario: this.scenarioName, clients: this.players.size, tick: this.sim.tick, bodies: this.lastBodyCount, params: this.params, netMode: this.netMode };
+    if (this.opts.netModeNote) info.netModeNote = this.opts.netModeNote;
+    return info;
   }
 
   /** Adds a member as a new player; its join goes into the next tick's record. Throws RoomError when refused. */
@@ -422,7 +455,7 @@ export class Room implements HostedRoom {
     }
     m.ticks.inc();
     if (this.players.size === 0 && (this.opts.pauseWhenEmpty ?? true) && this.pendingLeaves.length === 0) this.tickClock.stop();
-    const send = this.deliver(tick, events);
+    const send = this.deliver(tick, events, this.predictFeed?.frame(record) ?? null);
     if (this.opts.recorder?.release) this.opts.recorder.release(tick, send);
     else send();
     for (const fn of this.tickListeners) fn(record, events);
@@ -433,10 +466,9 @@ export class Room implements HostedRoom {
   }
 
   /** Does the tick's bookkeeping now and returns what sends its events and frame (possibly later, see release). */
-  private deliver(tick: number, events: readonly SimEvent[]): () => void {
-    // What a removal changes is applied once this tick is sent: frames taken before it may still show the body.
+  private deliver(tick: number, events: readonly SimEvent[], recordMessage: Uint8Array | null): () => void {
+    // A removed scene static stays one until this tick is sent: a held frame taken before it still shows the body.
     const removed = events.flatMap((e) => (e.type === 'bodyRemoved' ? [e.bodyId] : []));
-    const removals = this.frameDescriptors.removals(removed);
     let frame: WorldFrame | null = null;
     this.snapshotAccumulator += this.opts.snapshotRateHz;
     if (this.snapshotAccumulator + 1e-9 >= TICK_RATE_HZ) {
@@ -454,17 +486,28 @@ export class Room implements HostedRoom {
           },
           characters: this.sim.characters(),
         };
-        this.frameDescriptors.capture(frame.bodies.ids, frame.bodies.count, (id) => this.sceneStatics.has(id), (id) => this.sim.bodyDescriptor(id));
+        if (this.opts.recorder?.release) frame.descriptors = this.captureDescriptors(frame.bodies);
       }
     }
     return () => {
       if (this.closed) return;
       const members = [...this.players.values()].filter((p): p is Player & { member: RoomMember } => p.member !== null);
+      if (recordMessage !== null) for (const p of members) this.safely(p, () => p.member.deliverRecord?.(tick, recordMessage));
       if (events.length > 0) for (const p of members) this.safely(p, () => p.member.deliverEvents(tick, events));
       if (frame) for (const p of members) this.safely(p, () => p.member.deliverFrame(frame));
       for (const id of removed) this.sceneStatics.delete(id); // its id may be reused
-      this.frameDescriptors.release(removals);
     };
+  }
+
+  private captureDescriptors(bodies: WorldFrame['bodies']): Map<number, BodyDescriptor> {
+    const out = new Map<number, BodyDescriptor>();
+    for (let i = 0; i < bodies.count; i++) {
+      const id = bodies.ids[i];
+      if (this.isSceneStatic(id)) continue;
+      const d = this.sim.bodyDescriptor(id);
+      if (d) out.set(id, d);
+    }
+    return out;
   }
 
   // A member that throws while taking a delivery is removed; the room and the other members carry on.
