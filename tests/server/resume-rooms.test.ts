@@ -12,6 +12,7 @@ import { silentLogger } from '../../server/logger.ts';
 import { createMetrics } from '../../server/metrics.ts';
 import { startServer } from '../../server/start-server.ts';
 import { cli } from '../helpers/cli.ts';
+import { buildLog } from '../helpers/input-log.ts';
 
 let root = '';
 /** A finished 200-tick recording (3 bots, a hash every tick, a checkpoint every 60 ticks). */
@@ -89,7 +90,9 @@ describe('resume point', () => {
 describe('serve --resume (in-process)', () => {
   it('reopens the room at the last tick with the recorded state, goes on in the same log, and refuses a damaged log untouched', async () => {
     const middle = flipByte(unterminated, tickEntry(unterminated, 50).offset + 3);
-    const dir = await dirWith('serve', { 'default-20260101T000000Z.taoslog': unterminated, 'arena-20260101T000000Z.taoslog': middle, 'old-20250101T000000Z.taoslog': complete });
+    // foreign: shape-rain with a "spread" parameter this build does not declare, cut off like a crash.
+    const foreign = buildLog(3, { end: false });
+    const dir = await dirWith('serve', { 'default-20260101T000000Z.taoslog': unterminated, 'arena-20260101T000000Z.taoslog': middle, 'old-20250101T000000Z.taoslog': complete, 'rain-20260101T000000Z.taoslog': foreign });
     const server = await startServer({ port: 0, resumeDir: dir, recordDir: dir, recordHashEveryTicks: 1, logger: silentLogger(), metrics: createMetrics({ processMetrics: false }), clientDir: '/nonexistent-client-dir' });
     let closed = false;
     try {
@@ -97,8 +100,11 @@ describe('serve --resume (in-process)', () => {
       expect(server.resumed!.rooms[0].players.map((p) => p.playerId)).toEqual([1, 2, 3]);
       expect(server.resumed!.complete).toEqual([join(dir, 'old-20250101T000000Z.taoslog')]);
       const refused = server.resumed!.refused;
-      expect(refused).toHaveLength(1);
+      expect(refused).toHaveLength(2);
       expect(refused[0]).toMatchObject({ path: join(dir, 'arena-20260101T000000Z.taoslog'), recordIndex: tickEntry(unterminated, 50).index });
+      expect(refused[1]).toMatchObject({ path: join(dir, 'rain-20260101T000000Z.taoslog'), recordIndex: 0 });
+      expect(refused[1].reason).toMatch(/its scenario cannot be built: .*unknown parameter "spread"/);
+      expect(server.game.rooms.get('rain')).toBeUndefined();
       expect(server.game.rooms.get('arena')).toBeUndefined();
       const room = server.game.rooms.local('default')!;
       expect(room.sim.tick).toBeGreaterThanOrEqual(200);
@@ -109,6 +115,7 @@ describe('serve --resume (in-process)', () => {
       await server.close('test over');
       closed = true;
       expect(new Uint8Array(await readFile(join(dir, 'arena-20260101T000000Z.taoslog')))).toEqual(middle);
+      expect(new Uint8Array(await readFile(join(dir, 'rain-20260101T000000Z.taoslog')))).toEqual(foreign);
       const report = await replayLog(join(dir, 'default-20260101T000000Z.taoslog'));
       expect(report).toMatchObject({ status: 'ok', log: 'complete' });
       expect(report.ticks).toBeGreaterThanOrEqual(201);
