@@ -1,6 +1,7 @@
 // Browser test of issue 13 item 4: a recording server process under a connected page is killed with SIGKILL and
 // restarted with --resume on the same port; the page says "Server restarted, rejoining", then plays on as the same
-// player in the same room without a reload.
+// player in the same room without a reload (the default scenario: a page that predicted comes back to a resumed room,
+// which serves snapshots).
 import { spawn, type ChildProcess } from 'node:child_process';
 import { mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -50,7 +51,7 @@ describeBrowser('server restart under a connected page', () => {
 
   it('says the server restarted and rejoins as the same player after kill -9 and serve --resume', async () => {
     const dir = join(tmp, 'rec');
-    const common = ['--client-dir', clientDir, '--scenario', 'shape-rain', '--param', 'count=20'];
+    const common = ['--client-dir', clientDir];
     const first = await serve(['--port', '0', '--record', dir, ...common]);
     let second: Awaited<ReturnType<typeof serve>> | null = null;
     try {
