@@ -6,6 +6,7 @@ import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
 import { decideNetMode } from './net-mode-policy.ts';
 import { Room, RoomError, type RoomRecorder } from './room.ts';
+import type { PlayerInputState } from '../shared/protocol/record-delta.ts';
 import type { RoomFactory, RoomSimulationBuild, RoomSpec } from './room-manager.ts';
 
 /** What openRoom needs besides the spec. */
@@ -41,7 +42,7 @@ export async function openRoom(spec: RoomSpec, opts: OpenRoomOptions): Promise<R
 }
 
 /** The Room (not started) around a built simulation and its recorder (a resumed room's comes from its log). */
-export function roomAround(spec: RoomSpec, built: RoomSimulationBuild, recorder: RoomRecorder | null, opts: Omit<OpenRoomOptions, 'factory'>): Room {
+export function roomAround(spec: RoomSpec, built: RoomSimulationBuild, recorder: RoomRecorder | null, opts: Omit<OpenRoomOptions, 'factory'>, predictInputs?: readonly PlayerInputState[]): Room {
   const { id, scenario, seed } = spec;
   const netModeRequested = spec.netMode ?? 'auto';
   const decision = decideNetMode(netModeRequested, scenario, built.params);
@@ -65,5 +66,6 @@ export function roomAround(spec: RoomSpec, built: RoomSimulationBuild, recorder:
     maxInputLeadTicks: opts.maxInputLeadTicks,
     pauseWhenEmpty: opts.pauseWhenEmpty,
     recorder,
+    predictInputs,
   });
 }

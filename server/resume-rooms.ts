@@ -5,6 +5,7 @@
 import { copyFile, readdir } from 'node:fs/promises';
 import { join } from 'node:path';
 import { NEUTRAL_INPUT, type InputCommand } from '../shared/sim/input.ts';
+import { RecordDeltaCoder, type PlayerInputState } from '../shared/protocol/record-delta.ts';
 import type { Simulation } from '../shared/sim/simulation.ts';
 import type { GameServer } from './game-server.ts';
 import { appendResumeKey, readResumeKeys } from './log/resume-keys.ts';
@@ -43,6 +44,8 @@ export interface ResumedRoom {
   keys: Map<number, string>;
   tick: number;
   hash: string;
+  /** Predict mode's record-coder state at the resume tick (null: the room serves snapshots). */
+  predictInputs: PlayerInputState[] | null;
   /** Ticks re-simulated (from the checkpoint, or 0) and how long the whole resume of this log took. */
   resimulatedTicks: number;
   resumeMs: number;
@@ -142,7 +145,15 @@ export async function scanForResume(dir: string, factory: RecordingFactory, logg
     const path = join(dir, name);
     const started = performance.now();
     const m = LOG_NAME_RE.exec(name);
-    const found = await findResumePoint(path);
+    // Every record goes through a record coder, as a predict-mode room's feed sent it, so the feed can go on.
+    let coder: RecordDeltaCoder | null = new RecordDeltaCoder();
+    const found = await findResumePoint(path, (record) => {
+      try {
+        coder?.encode(record);
+      } catch {
+        coder = null;
+      }
+    });
     if ('kind' in found) {
       if (found.kind === 'complete') scan.complete.push(path);
       else scan.refused.push({ path, reason: found.reason, recordIndex: found.recordIndex, byteOffset: found.byteOffset });
@@ -167,6 +178,7 @@ export async function scanForResume(dir: string, factory: RecordingFactory, logg
         point: found,
         players: heldPlayers(found, built.sim),
         keys: readResumeKeys(path),
+        predictInputs: coder?.state() ?? null,
         tick: built.sim.tick,
         hash: built.sim.stateHash(),
         resimulatedTicks: found.records.length,
@@ -196,7 +208,7 @@ export async function reopenRooms(server: GameServer, scan: ResumeScan, factory:
         { path: r.path, header: p.header, ticks: p.ticks, validBytes: p.validBytes },
       );
       const spec = { id: r.id, scenario: r.scenario, params: r.built.params, seed: r.seed };
-      const room = server.rooms.adopt(spec, r.built, recording, (room) => room.restorePlayers(r.players, Math.max(p.maxPlayerId, ...r.players.map((x) => x.playerId))));
+      const room = server.rooms.adopt(spec, r.built, recording, (room) => room.restorePlayers(r.players, Math.max(p.maxPlayerId, ...r.players.map((x) => x.playerId))), r.predictInputs);
       const resume = server.access.resume;
       for (const player of r.players) {
         const key = r.keys.get(player.playerId);

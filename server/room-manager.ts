@@ -7,6 +7,7 @@ import type { HostedRoom } from './hosted-room.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
 import { NetMode } from '../shared/protocol/predict-messages.ts';
+import type { PlayerInputState } from '../shared/protocol/record-delta.ts';
 import type { NetModeRequest } from './net-mode-policy.ts';
 import { openRoom, roomAround } from './open-room.ts';
 import { Room, RoomError, type RoomInfo, type RoomRecorder, type RoomSimulation } from './room.ts';
@@ -206,13 +207,14 @@ export class RoomManager {
   /**
    * Opens a room around a simulation that already ran (a log resumed after a crash, server/resume-rooms.ts) under
    * its old id, on this thread; `prepare` runs before its first tick (it restores the held players). Throws RoomError
-   * when the id is taken or the server is closing. It serves snapshots: predict mode's record stream starts with the
-   * room and cannot yet pick up players already in the world.
+   * when the id is taken or the server is closing. `predictInputs` (the players in the game and their last commands)
+   * lets predict mode's record stream go on; without them the room serves snapshots.
    */
-  adopt(spec: RoomSpec, built: RoomSimulationBuild, recorder: RoomRecorder | null, prepare: (room: Room) => void): Room {
+  adopt(spec: RoomSpec, built: RoomSimulationBuild, recorder: RoomRecorder | null, prepare: (room: Room) => void, predictInputs: readonly PlayerInputState[] | null): Room {
     if (this.closing) throw new RoomError(ErrorCode.Internal, 'the server is shutting down');
     if (this.rooms.has(spec.id) || this.creating.has(spec.id)) throw new RoomError(ErrorCode.Internal, `room ${spec.id} is already open`);
-    const room = roomAround({ ...spec, netMode: NetMode.Snapshot }, built, recorder, this.opts);
+    const netMode = predictInputs === null ? NetMode.Snapshot : (spec.netMode ?? this.opts.netMode ?? 'auto');
+    const room = roomAround({ ...spec, netMode }, built, recorder, this.opts, predictInputs ?? undefined);
     return this.register(room, () => prepare(room));
   }
 

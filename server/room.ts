@@ -12,6 +12,7 @@ import type { HostedRoom, MemberSink, RoomEntry, Seat } from './hosted-room.ts';
 import { InputBuffer, OfferResult } from './input-buffer.ts';
 import type { NetModeRequest } from './net-mode-policy.ts';
 import { PredictFeed } from './predict-feed.ts';
+import type { PlayerInputState } from '../shared/protocol/record-delta.ts';
 import { enterRoom } from './local-seat.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
@@ -120,6 +121,8 @@ export interface RoomOptions {
   /** Stop ticking while nobody is in the room. Default true. */
   pauseWhenEmpty?: boolean;
   recorder?: RoomRecorder | null;
+  /** A resumed room's players already in the game with their last commands, for predict mode's record stream. */
+  predictInputs?: readonly PlayerInputState[];
   /** How the room serves its members (decided by net-mode-policy.ts). Default snapshot. */
   netMode?: NetMode;
   /** The mode the room was asked for. Default: netMode. */
@@ -217,7 +220,7 @@ export class Room implements HostedRoom {
     if (this.netMode === NetMode.Predict) {
       const save = sim.saveCheckpointBytes?.bind(sim);
       if (!save) throw new Error(`room ${opts.id}: predict mode needs a simulation with saveCheckpointBytes()`);
-      this.predictFeed = new PredictFeed({ get tick() { return sim.tick; }, stateHash: () => sim.stateHash(), saveCheckpointBytes: save }, opts.seed);
+      this.predictFeed = new PredictFeed({ get tick() { return sim.tick; }, stateHash: () => sim.stateHash(), saveCheckpointBytes: save }, opts.seed, opts.predictInputs);
     }
     this.snapshots = new SnapshotFanOut({ bounds: this.bounds, isSceneStatic: (id) => this.isSceneStatic(id), describe: (id) => sim.bodyDescriptor(id) ?? undefined });
     const initial = sim.readBodyStates();

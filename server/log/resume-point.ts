@@ -42,8 +42,11 @@ function nextIntactRecord(bytes: Uint8Array, from: number): number {
   return -1;
 }
 
-/** Reads and checks one log; a ResumePoint when it can be resumed, else why not. Never throws for a bad file. */
-export async function findResumePoint(path: string): Promise<ResumePoint | ResumeRefusal> {
+/**
+ * Reads and checks one log; a ResumePoint when it can be resumed, else why not. Never throws for a bad file.
+ * `onTick` sees every tick record of the intact prefix, in order.
+ */
+export async function findResumePoint(path: string, onTick?: (record: TickInputRecord) => void): Promise<ResumePoint | ResumeRefusal> {
   let bytes: Uint8Array;
   try {
     bytes = new Uint8Array(await readFile(path));
@@ -70,10 +73,10 @@ export async function findResumePoint(path: string): Promise<ResumePoint | Resum
     ending = 'damaged-tail';
     tailDamage = `record #${c.recordIndex} (byte offset ${c.byteOffset}) and the ${o.fileBytes - c.byteOffset} bytes after it: ${c.reason}`;
   }
-  return { path, header: log.header, ticks: o.ticks, validBytes: o.validBytes, fileBytes: o.fileBytes, ending, ...(tailDamage ? { tailDamage } : {}), ...collect(log.entries) };
+  return { path, header: log.header, ticks: o.ticks, validBytes: o.validBytes, fileBytes: o.fileBytes, ending, ...(tailDamage ? { tailDamage } : {}), ...collect(log.entries, onTick) };
 }
 
-function collect(entries: readonly LogEntry[]): Pick<ResumePoint, 'checkpoint' | 'hashes' | 'records' | 'names' | 'maxPlayerId'> {
+function collect(entries: readonly LogEntry[], onTick: ((record: TickInputRecord) => void) | undefined): Pick<ResumePoint, 'checkpoint' | 'hashes' | 'records' | 'names' | 'maxPlayerId'> {
   let checkpoint: ResumePoint['checkpoint'] = null;
   const hashes: ResumePoint['hashes'] = new Map();
   let records: TickInputRecord[] = [];
@@ -82,6 +85,7 @@ function collect(entries: readonly LogEntry[]): Pick<ResumePoint, 'checkpoint' |
   for (const e of entries) {
     if (e.type === 'tick') {
       records.push(e.record);
+      onTick?.(e.record);
       for (const j of e.record.joins) {
         names.set(j.playerId, j.name);
         maxPlayerId = Math.max(maxPlayerId, j.playerId);

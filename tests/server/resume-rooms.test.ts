@@ -5,7 +5,9 @@ import { mkdir, mkdtemp, readdir, readFile, rm, writeFile } from 'node:fs/promis
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { nodePredictOptions } from '../../cli/predict-options.ts';
 import { replayLog } from '../../cli/replay-session.ts';
+import { connect } from '../../sdk/index.ts';
 import { readLogBytes } from '../../server/log/log-bytes.ts';
 import { findResumePoint } from '../../server/log/resume-point.ts';
 import { silentLogger } from '../../server/logger.ts';
@@ -124,6 +126,27 @@ describe('serve --resume (in-process)', () => {
       expect(leaves).toEqual([[200, [1, 2, 3]]]);
     } finally {
       if (!closed) await server.close('test over');
+    }
+  });
+
+  it('goes on with predict mode: a predicting client confirms the resumed room\'s hashes while its players are held', async () => {
+    // Resume keys for the three bots: they stay held, so the resumed room's records carry their held commands.
+    const keys = new TextEncoder().encode([1, 2, 3].map((id) => `${id} ${String(id).repeat(43)}\n`).join(''));
+    const dir = await dirWith('predict', { 'default-20260101T000000Z.taoslog': unterminated, 'default-20260101T000000Z.taoslog.resume': keys });
+    const server = await startServer({ port: 0, resumeDir: dir, logger: silentLogger(), metrics: createMetrics({ processMetrics: false }), clientDir: '/nonexistent-client-dir' });
+    const pred = connect(server.wsUrl, { name: 'pred', predict: nodePredictOptions(), reconnect: false });
+    try {
+      expect(server.game.listRooms()[0]).toMatchObject({ id: 'default', netMode: 'predict', clients: 3 });
+      await pred.whenConnected();
+      pred.setInput({ moveX: 0, moveZ: 127, yaw: 2000, pitch: 0, buttons: 0 });
+      const deadline = performance.now() + 30_000;
+      while ((pred.stats().prediction?.hashesVerified ?? 0) < 3 && performance.now() < deadline) await new Promise((r) => setTimeout(r, 25));
+      expect(pred.stats().prediction).toMatchObject({ mode: 'predict', desyncs: 0 });
+      expect(pred.stats().prediction!.hashesVerified).toBeGreaterThanOrEqual(3);
+      expect(server.game.listRooms()[0].clients).toBe(4);
+    } finally {
+      pred.close();
+      await server.close('test over');
     }
   });
 
