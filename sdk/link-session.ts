@@ -60,6 +60,8 @@ export interface LinkClosedInfo {
   errorBeforeWelcome: ErrorMessage | null;
   /** Closed by the client itself. */
   byClient: boolean;
+  /** Whether the connection ever opened (false: nothing answered, e.g. the server is down or restarting). */
+  opened: boolean;
 }
 
 /** Settings a LinkSession needs. */
@@ -116,6 +118,7 @@ export class LinkSession {
   private bye: ServerByeMessage | null = null;
   private errorBeforeWelcome: ErrorMessage | null = null;
   private closing = false;
+  private opened = false;
   private ended = false;
   private pingsSent = 0;
   private newestFrame: QuantizedFrame | null = null;
@@ -130,7 +133,10 @@ export class LinkSession {
     this.sender = new InputSender({ redundancy: opts.inputRedundancy });
     this.sender.setCommand(opts.input);
     this.transport = opts.transport(opts.url, {
-      open: () => this.send({ type: 'hello', version: PROTOCOL_VERSION, name: opts.name, room: opts.room, seatToken: opts.seatToken, resumeToken: opts.resumeToken }),
+      open: () => {
+        this.opened = true;
+        this.send({ type: 'hello', version: PROTOCOL_VERSION, name: opts.name, room: opts.room, seatToken: opts.seatToken, resumeToken: opts.resumeToken });
+      },
       message: (data) => this.receive(data),
       close: (code, reason) => this.end(code, reason),
     });
@@ -243,7 +249,7 @@ export class LinkSession {
     this.ended = true;
     this.clearTimers();
     this.predictSession?.dispose();
-    this.h.closed({ code, reason, welcomed: this.welcomeMsg !== null, bye: this.bye, errorBeforeWelcome: this.errorBeforeWelcome, byClient: this.closing });
+    this.h.closed({ code, reason, welcomed: this.welcomeMsg !== null, bye: this.bye, errorBeforeWelcome: this.errorBeforeWelcome, byClient: this.closing, opened: this.opened });
   }
 
   private receive(data: Uint8Array): void {
