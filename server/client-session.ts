@@ -25,6 +25,7 @@ import { RateLimiter, type RateLimit } from './rate-limiter.ts';
 import { RoomError, type Room, type RoomMember, type WorldFrame } from './room.ts';
 import { buildWelcome } from './welcome.ts';
 import type { RoomManager } from './room-manager.ts';
+import { LinkStats } from './monitor/link-stats.ts';
 
 /** Per-client limits. */
 export interface SessionLimits {
@@ -95,6 +96,8 @@ export class ClientSession implements RoomMember, ResumeHolder {
   readonly id = nextSessionId++;
   readonly conn: ServerConnection;
   readonly stats: SessionStats = { messagesReceived: 0, badMessages: 0, errorsSent: 0, snapshotsSent: 0, snapshotsSkipped: 0, snapshotBytes: 0, bytesSent: 0, inputsLate: 0, inputsTooFar: 0 };
+  /** Name, bytes in, input lead and RTT, for the monitor. */
+  readonly link = new LinkStats();
   private readonly ctx: SessionContext;
   private readonly messageLimiter: RateLimiter;
   private readonly inputLimiter: RateLimiter;
@@ -154,6 +157,7 @@ export class ClientSession implements RoomMember, ResumeHolder {
     this.stats.messagesReceived++;
     m.messagesReceived.inc();
     m.bytesReceived.inc(data.length);
+    this.link.bytesIn += data.length;
     if (!this.messageLimiter.take()) {
       this.end(ByeReason.Flood, `more than ${this.ctx.limits.messages.perSecond} messages per second`, CloseCode.PolicyViolation);
       return;
@@ -206,6 +210,7 @@ export class ClientSession implements RoomMember, ResumeHolder {
           this.end(ByeReason.Flood, `more than ${this.ctx.limits.inputs.perSecond} input messages per second`, CloseCode.PolicyViolation);
           return;
         }
+        if (msg.commands.length > 0) this.link.inputArrived(msg.firstTick + msg.commands.length - 1, this.room.sim.tick);
         for (let i = 0; i < msg.commands.length; i++) {
           const r = this.room.offerInput(this.playerId, msg.firstTick + i, msg.commands[i]);
           if (r === OfferResult.Late) this.stats.inputsLate++;
@@ -219,6 +224,7 @@ export class ClientSession implements RoomMember, ResumeHolder {
           return;
         }
         this.encoder.acknowledge(msg.tick);
+        this.link.acked(msg.tick, this.ctx.clock.nowMs());
         return;
       case 'ping': {
         const room = this.room;
@@ -246,6 +252,7 @@ export class ClientSession implements RoomMember, ResumeHolder {
     if (this.helloTimer) this.ctx.clock.clearTimer(this.helloTimer);
     this.helloTimer = null;
     this.conn.helloed?.();
+    this.link.name = hello.name;
     if (hello.resumeToken !== undefined) {
       const resume = this.ctx.access.resume;
       const claim = resume ? resume.claim(hello.resumeToken, hello.room) : ({ ok: false, reason: 'this server does not resume players' } as const);
@@ -380,6 +387,7 @@ export class ClientSession implements RoomMember, ResumeHolder {
     // The room quantizes and frames once per tick what its members share.
     const { message, encoded } = this.room.snapshots.snapshotFor(this.encoder, frame);
     const size = this.sendEncoded(message);
+    this.link.snapshotSent(frame.tick, this.ctx.clock.nowMs());
     this.stats.snapshotsSent++;
     this.stats.snapshotBytes += size;
     m.snapshotBytes.observe(size);

@@ -116,6 +116,11 @@ export class GameServer {
     return server;
   }
 
+  /** The open sessions (a copy), for the monitor. */
+  sessionList(): ClientSession[] {
+    return [...this.sessions];
+  }
+
   /** Open sessions. */
   sessionCount(): number {
     return this.sessions.size;

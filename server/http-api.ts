@@ -8,6 +8,7 @@ import type { GameServer } from './game-server.ts';
 import { HttpError, HttpErrorCode } from './http-errors.ts';
 import type { CreateRoomRequest, HttpApi } from './http-server.ts';
 import type { Logger } from './logger.ts';
+import type { MonitorRoutes } from './monitor/monitor-routes.ts';
 import { renderMetrics, type ServerMetrics } from './metrics.ts';
 import { RoomError, type Room, type RoomInfo } from './room.ts';
 import type { ScenarioSource } from './room-factory.ts';
@@ -22,6 +23,8 @@ export interface HttpApiOptions {
   /** Access control: the guard every request passes first, and the seat tokens the seats route issues. */
   access: ServerAccess;
   staticFiles(req: IncomingMessage, res: ServerResponse): Promise<boolean>;
+  /** The monitor's routes; absent: no /monitor. */
+  monitor?: MonitorRoutes;
 }
 
 const quote = (s: string): string => JSON.stringify(s.length > 64 ? `${s.slice(0, 64)}…` : s);
@@ -96,5 +99,6 @@ export function createHttpApi(opts: HttpApiOptions): HttpApi {
     metrics: () => renderMetrics(opts.metrics),
     authorize: opts.access.authorize,
     staticFiles: (req, res) => opts.staticFiles(req, res),
+    monitor: opts.monitor,
   };
 }

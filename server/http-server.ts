@@ -1,4 +1,5 @@
-// The HTTP half of the server's single port: /healthz, /metrics, the rooms and seats API and the static client files.
+// The HTTP half of the server's single port: /healthz, /metrics, the rooms and seats API, the monitor and the static
+// client files.
 // Routing and request parsing only; what the answers contain (and who may ask) comes from the HttpApi passed in.
 // Every refusal is answered as `{error: code, message}` (server/http-errors.ts, server/access/refusal.ts).
 import { createServer, type IncomingMessage, type RequestListener, type Server, type ServerResponse } from 'node:http';
@@ -7,6 +8,7 @@ import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import { sendRefusal, type Refusal } from './access/refusal.ts';
 import { parseSeatRequest, type SeatAnswer, type SeatRequest } from './access/seat-request.ts';
 import { HttpError, HttpErrorCode, sendError, sendJson } from './http-errors.ts';
+import type { MonitorRoutes } from './monitor/monitor-routes.ts';
 import { RoomError, type RoomInfo } from './room.ts';
 
 /** What POST /api/rooms asks for. */
@@ -32,6 +34,8 @@ export interface HttpApi {
   reserveSeat(roomId: string, req: SeatRequest): SeatAnswer;
   /** GET /metrics. */
   metrics(): Promise<{ body: string; contentType: string }>;
+  /** GET /monitor and its data and actions (server/monitor/monitor-routes.ts); absent: no monitor. */
+  monitor?: MonitorRoutes;
   /** Access rules, checked before any route: a refusal is the whole answer. */
   authorize?(req: IncomingMessage, method: string, path: string): Refusal | null;
   /** Anything else: static files; resolves true when it answered. */
@@ -198,6 +202,10 @@ async function route(api: HttpApi, req: IncomingMessage, res: ServerResponse): P
       sendJson(res, 200, { room: await api.deleteRoom(id) });
     } else throw notAllowed(method, path, 'GET, HEAD, DELETE');
     return;
+  }
+  if (api.monitor && (path === '/monitor' || path.startsWith('/monitor/'))) {
+    if (await api.monitor(req, res, method, path)) return;
+    throw new HttpError(404, HttpErrorCode.NotFound, `no monitor route ${path.slice(0, 100)} (see /monitor, /monitor/state, /monitor/events)`);
   }
   if (path.startsWith('/api/')) throw new HttpError(404, HttpErrorCode.NotFound, `no API route ${path.slice(0, 100)} (see /api/rooms, /api/scenarios)`);
   if (await api.staticFiles(req, res)) return;

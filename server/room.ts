@@ -12,6 +12,7 @@ import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
 import { SnapshotFanOut } from './snapshot-fan-out.ts';
 import { TickClock } from './tick-clock.ts';
+import { TickTimes } from './monitor/tick-times.ts';
 
 /** The bulk body read the room hands to snapshot encoders (the world's readBodyStates() shape). */
 export interface BodyStates {
@@ -149,6 +150,8 @@ export class Room {
   readonly tickClock: TickClock;
   /** The members' shared snapshot and event work (format, quantized frame, framed messages). */
   readonly snapshots: SnapshotFanOut;
+  /** Recent tick wall times and the tick count, for the monitor. */
+  readonly tickTimes = new TickTimes();
   private readonly opts: RoomOptions;
   private readonly players = new Map<number, Player>();
   private pendingLeaves: number[] = [];
@@ -380,6 +383,7 @@ export class Room {
     for (const fn of this.tickListeners) fn(record, events);
     const seconds = (performance.now() - started) / 1000;
     m.tickDuration.observe(seconds);
+    this.tickTimes.record(seconds * 1000);
     if (seconds > 1 / TICK_RATE_HZ) m.tickOverruns.inc();
   }
 

@@ -22,6 +22,8 @@ import { createMetrics, type ServerMetrics } from './metrics.ts';
 import { createRoomFactory, type ScenarioSource } from './room-factory.ts';
 import { createStaticHandler } from './static-files.ts';
 import { attachWsGateway } from './ws-gateway.ts';
+import { createMonitorRoutes } from './monitor/monitor-routes.ts';
+import { ServerMonitor } from './monitor/server-monitor.ts';
 
 const REPO_ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 /** Where the built browser client is served from by default. */
@@ -143,8 +145,9 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   });
 
   const staticFiles = createStaticHandler(opts.clientDir ?? DEFAULT_CLIENT_DIR);
+  const monitor = new ServerMonitor(game);
   const http = createHttpServer(
-    createHttpApi({ game, scenarios, metrics, logger, access, staticFiles }),
+    createHttpApi({ game, scenarios, metrics, logger, access, staticFiles, monitor: createMonitorRoutes(monitor) }),
     (error) => logger.error({ err: error }, 'HTTP request failed'),
     opts.tls,
   );
@@ -179,6 +182,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
       });
     });
   } catch (error) {
+    monitor.close();
     await game.close('failed to start');
     await gateway.close(0);
     const e = error as NodeJS.ErrnoException;
@@ -205,6 +209,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     policy,
     close(reason = 'server shutting down') {
       closing ??= (async () => {
+        monitor.close();
         await game.close(reason);
         await gateway.close(1000);
         const stopped = new Promise<void>((done) => gate.close(() => done()));

@@ -1,0 +1,42 @@
+// What the monitor shows about one client link, kept by its session: the player's name, bytes received, the lead of
+// its newest input over the room's tick, and a round-trip time measured from each snapshot sent to its ack (the
+// client library acks a snapshot as soon as it has decoded it). Plain counters: no timers, no allocation per message.
+
+/** How many sent snapshots wait for their ack (older ones are forgotten: their ack no longer measures anything). */
+const PENDING_ACKS = 64;
+
+/** Counters of one link. */
+export class LinkStats {
+  /** The player's display name once joined. */
+  name = '';
+  /** Bytes received from the client (every frame). */
+  bytesIn = 0;
+  /** Newest input tick minus the room's next tick at arrival; null before the first input. */
+  inputLeadTicks: number | null = null;
+  /** Smoothed snapshot → ack round trip (ms); null before the first ack. */
+  rttMs: number | null = null;
+  private readonly sentTick = new Int32Array(PENDING_ACKS).fill(-1);
+  private readonly sentMs = new Float64Array(PENDING_ACKS);
+
+  /** A snapshot for `tick` went out at `nowMs`. */
+  snapshotSent(tick: number, nowMs: number): void {
+    const slot = tick % PENDING_ACKS;
+    this.sentTick[slot] = tick;
+    this.sentMs[slot] = nowMs;
+  }
+
+  /** The client acked the snapshot of `tick` at `nowMs` (unknown or repeated acks are ignored). */
+  acked(tick: number, nowMs: number): void {
+    if (!Number.isInteger(tick) || tick < 0) return;
+    const slot = tick % PENDING_ACKS;
+    if (this.sentTick[slot] !== tick) return;
+    this.sentTick[slot] = -1;
+    const sample = Math.max(0, nowMs - this.sentMs[slot]);
+    this.rttMs = this.rttMs === null ? sample : this.rttMs + (sample - this.rttMs) / 8;
+  }
+
+  /** An input batch arrived whose newest command is for `newestTick` while the room is about to simulate `roomTick`. */
+  inputArrived(newestTick: number, roomTick: number): void {
+    this.inputLeadTicks = newestTick - roomTick;
+  }
+}

@@ -1,0 +1,34 @@
+// Tests for server/monitor/link-stats.ts: RTT from snapshot to ack (smoothed), input lead, unknown acks ignored.
+import { describe, expect, it } from 'vitest';
+import { LinkStats } from '../../../server/monitor/link-stats.ts';
+
+describe('link-stats', () => {
+  it('measures the round trip from a snapshot to its ack and smooths later samples', () => {
+    const l = new LinkStats();
+    l.snapshotSent(10, 1000);
+    l.acked(10, 1040);
+    expect(l.rttMs).toBe(40);
+    l.snapshotSent(12, 2000);
+    l.acked(12, 2120);
+    expect(l.rttMs).toBe(50);
+  });
+
+  it('ignores acks of ticks it never sent, repeated acks and hostile values', () => {
+    const l = new LinkStats();
+    l.snapshotSent(5, 0);
+    l.acked(6, 10);
+    l.acked(-1, 10);
+    l.acked(1.5, 10);
+    expect(l.rttMs).toBeNull();
+    l.acked(5, 30);
+    l.acked(5, 900);
+    expect(l.rttMs).toBe(30);
+  });
+
+  it('keeps the lead of the newest input over the room tick', () => {
+    const l = new LinkStats();
+    expect(l.inputLeadTicks).toBeNull();
+    l.inputArrived(105, 100);
+    expect(l.inputLeadTicks).toBe(5);
+  });
+});
