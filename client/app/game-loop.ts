@@ -7,6 +7,7 @@ import { FrameTimer } from './frame-timer.ts';
 import type { Hud } from './hud.ts';
 import type { InputController } from './input-controller.ts';
 import { NetHistory } from './net-history.ts';
+import { contentBox } from './scene-extent.ts';
 import type { NetSession, SessionWelcome } from './session-types.ts';
 import type { SnapshotView } from '../../shared/protocol/snapshot-frame.ts';
 import type { WorldView } from './world-view.ts';
@@ -42,6 +43,8 @@ export class GameLoop {
   private readonly welcome: SessionWelcome;
   private readonly follow = new FollowCamera();
   private readonly orbit = new OrbitCamera();
+  /** Whether the orbit camera has been fitted to the scene's content since it was last switched to. */
+  private orbitFitted = false;
   private rafId = 0;
   private inputTimer: ReturnType<typeof setInterval> | null = null;
   private lastFrameMs: number | null = null;
@@ -116,8 +119,14 @@ export class GameLoop {
     if (mine && !this.orbitOnly) {
       camera = this.follow.view([mine.position.x, mine.position.y, mine.position.z], this.input.yawRadians, this.input.pitchRadians, dt, this.world.occluders);
       s.following = true;
+      this.orbitFitted = false;
     } else {
       if (s.following) this.follow.reset();
+      if (!this.orbitFitted && f.view) {
+        const box = contentBox(this.world.staticDescriptors(), f.view, this.welcome.scenario.bounds);
+        this.orbit.frame(box.min, box.max);
+        this.orbitFitted = true;
+      }
       camera = this.orbit.view(dt);
       s.following = false;
     }

@@ -122,6 +122,13 @@ export class WorldView {
     return this.staticCount + this.visible.size;
   }
 
+  /** Descriptors of the static bodies known (the scene's fixed geometry). */
+  staticDescriptors(): BodyDescriptor[] {
+    const out: BodyDescriptor[] = [];
+    for (const k of this.known.values()) if (k.descriptor.motion === 'static') out.push(k.descriptor);
+    return out;
+  }
+
   /** A known body's descriptor. */
   descriptor(id: number): BodyDescriptor | undefined {
     return this.known.get(id)?.descriptor;

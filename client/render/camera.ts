@@ -110,11 +110,12 @@ export class OrbitCamera {
   /** Idle drift (rad/s); 0 turns it off. */
   driftRadiansPerSecond = 0.08;
 
-  /** Frames a box given by its min/max corners. */
+  /** Frames a box given by its min/max corners: the whole box fits the view from any azimuth. */
   frame(min: Vec3, max: Vec3): void {
-    this.center = [(min[0] + max[0]) / 2, Math.max(min[1], 0) + Math.min(4, (max[1] - min[1]) / 4), (min[2] + max[2]) / 2];
-    const span = Math.max(max[0] - min[0], max[2] - min[2], 4);
-    this.radiusMetres = Math.min(150, span * 0.85);
+    this.center = [(min[0] + max[0]) / 2, (min[1] + max[1]) / 2, (min[2] + max[2]) / 2];
+    const halfDiagonal = Math.hypot(max[0] - min[0], max[1] - min[1], max[2] - min[2]) / 2;
+    // The bounding sphere fits a cone of half-angle fov/2 at this distance (the narrower, vertical field of view).
+    this.radiusMetres = Math.max(3, Math.min(300, (halfDiagonal / Math.sin(FOV_Y_RADIANS / 2)) * 0.9));
   }
 
   /** Turns the camera by a pointer drag in pixels. */
