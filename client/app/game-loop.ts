@@ -11,6 +11,7 @@ import { contentBox } from './scene-extent.ts';
 import type { NetSession, SessionWelcome } from './session-types.ts';
 import type { SnapshotView } from '../../shared/protocol/snapshot-frame.ts';
 import type { WorldView } from './world-view.ts';
+import type { Decorations } from './decorations.ts';
 
 /** What the loop reports to the page each frame (and the test hook reads). */
 export interface LoopState {
@@ -37,6 +38,7 @@ export class GameLoop {
 
   private readonly renderer: Renderer;
   private readonly world: WorldView;
+  private readonly decorations: Decorations | null;
   private readonly session: NetSession;
   private readonly input: InputController;
   private readonly hud: Hud;
@@ -51,8 +53,9 @@ export class GameLoop {
   private stopped = false;
   private readonly onFatal: (err: Error) => void;
 
-  constructor(parts: { renderer: Renderer; world: WorldView; session: NetSession; input: InputController; hud: Hud; welcome: SessionWelcome; onFatal: (err: Error) => void }) {
+  constructor(parts: { renderer: Renderer; world: WorldView; decorations?: Decorations; session: NetSession; input: InputController; hud: Hud; welcome: SessionWelcome; onFatal: (err: Error) => void }) {
     this.renderer = parts.renderer;
+    this.decorations = parts.decorations ?? null;
     this.world = parts.world;
     this.session = parts.session;
     this.input = parts.input;
@@ -108,6 +111,7 @@ export class GameLoop {
   private draw(nowMs: number, dt: number): void {
     const f = this.session.frame(nowMs);
     this.world.apply(f.view, f.renderTick);
+    this.decorations?.update(f.view, nowMs);
     this.history.recordBufferDepth(nowMs, f.bufferDepth);
     const s = this.state;
     s.renderTick = f.renderTick;

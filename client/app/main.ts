@@ -13,6 +13,7 @@ import { fetchLobby, showStartScreen } from './start-screen.ts';
 import { installTestHook, type HookBody, type TaosState } from './test-hook.ts';
 import type { SnapshotView } from '../../shared/protocol/snapshot-frame.ts';
 import { WorldView } from './world-view.ts';
+import { Decorations } from './decorations.ts';
 
 const byId = <T extends HTMLElement>(id: string): T => {
   const e = document.getElementById(id);
@@ -134,6 +135,8 @@ function join(room: string | null, name: string): void {
   page.hud = hud;
   const world = new WorldView(renderer, (line) => hud.log(line));
   page.world = world;
+  const decorations = new Decorations(renderer, world);
+  world.onEvent = (e, removed) => decorations.onEvent(e, removed);
   const input = new InputController(byId('scene'));
   const wsUrl = `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/`;
 
@@ -145,9 +148,10 @@ function join(room: string | null, name: string): void {
       page.phase = 'playing';
       page.error = null;
       hideMessage();
+      decorations.clear();
       world.reset(welcome.staticBodies, welcome.dynamicBodies);
       page.loop?.stop();
-      const loop = new GameLoop({ renderer, world, session: page.session!, input, hud, welcome, onFatal: (err) => fail('Rendering failed', err.message) });
+      const loop = new GameLoop({ renderer, world, decorations, session: page.session!, input, hud, welcome, onFatal: (err) => fail('Rendering failed', err.message) });
       page.loop = loop;
       // ?hud=0 starts with the HUD and help hidden (clean screenshots); H toggles them.
       const showHud = new URLSearchParams(location.search).get('hud') !== '0';

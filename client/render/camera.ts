@@ -110,12 +110,12 @@ export class OrbitCamera {
   /** Idle drift (rad/s); 0 turns it off. */
   driftRadiansPerSecond = 0.08;
 
-  /** Frames a box given by its min/max corners: the whole box fits the view from any azimuth. */
+  /** Frames a box given by its min/max corners: its widest side spans most of a 16:9 view from above at an angle. */
   frame(min: Vec3, max: Vec3): void {
-    this.center = [(min[0] + max[0]) / 2, (min[1] + max[1]) / 2, (min[2] + max[2]) / 2];
-    const halfDiagonal = Math.hypot(max[0] - min[0], max[1] - min[1], max[2] - min[2]) / 2;
-    // The bounding sphere fits a cone of half-angle fov/2 at this distance (the narrower, vertical field of view).
-    this.radiusMetres = Math.max(3, Math.min(300, (halfDiagonal / Math.sin(FOV_Y_RADIANS / 2)) * 0.9));
+    // Scenes are wide rather than tall (a tall one is mostly sky above a pile): aim low, weigh height by half.
+    this.center = [(min[0] + max[0]) / 2, min[1] + (max[1] - min[1]) * 0.3, (min[2] + max[2]) / 2];
+    const span = Math.max(max[0] - min[0], (max[1] - min[1]) / 2, max[2] - min[2]);
+    this.radiusMetres = Math.max(3, Math.min(300, span * 0.75));
   }
 
   /** Turns the camera by a pointer drag in pixels. */
