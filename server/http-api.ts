@@ -91,6 +91,14 @@ export function createHttpApi(opts: HttpApiOptions): HttpApi {
       opts.logger.info({ room: id, clients: info.clients }, 'room closed over HTTP');
       return info;
     },
+    roomPlayers(roomId) {
+      if (!game.rooms.get(roomId)) throw new HttpError(404, HttpErrorCode.RoomNotFound, `no room ${quote(roomId)} is open`);
+      return game
+        .sessionList()
+        .filter((s) => !s.ended && s.currentRoom?.id === roomId)
+        .map((s) => ({ playerId: s.player, name: s.link.name }))
+        .sort((a, b) => a.playerId - b.playerId);
+    },
     reserveSeat(roomId, req) {
       if (!game.rooms.get(roomId)) throw new HttpError(404, HttpErrorCode.RoomNotFound, `no room ${quote(roomId)} is open`);
       const seat = opts.access.seats.issue(roomId, req.ttlSeconds === undefined ? undefined : req.ttlSeconds * 1000);

@@ -12,6 +12,7 @@ import type { NetSession, SessionWelcome } from './session-types.ts';
 import type { SnapshotView } from '../../shared/protocol/snapshot-frame.ts';
 import type { WorldView } from './world-view.ts';
 import type { Decorations } from './decorations.ts';
+import type { NameTags } from './name-tags.ts';
 
 /** What the loop reports to the page each frame (and the test hook reads). */
 export interface LoopState {
@@ -39,6 +40,7 @@ export class GameLoop {
   private readonly renderer: Renderer;
   private readonly world: WorldView;
   private readonly decorations: Decorations | null;
+  private readonly tags: NameTags | null;
   private readonly session: NetSession;
   private readonly input: InputController;
   private readonly hud: Hud;
@@ -53,9 +55,10 @@ export class GameLoop {
   private stopped = false;
   private readonly onFatal: (err: Error) => void;
 
-  constructor(parts: { renderer: Renderer; world: WorldView; decorations?: Decorations; session: NetSession; input: InputController; hud: Hud; welcome: SessionWelcome; onFatal: (err: Error) => void }) {
+  constructor(parts: { renderer: Renderer; world: WorldView; decorations?: Decorations; tags?: NameTags; session: NetSession; input: InputController; hud: Hud; welcome: SessionWelcome; onFatal: (err: Error) => void }) {
     this.renderer = parts.renderer;
     this.decorations = parts.decorations ?? null;
+    this.tags = parts.tags ?? null;
     this.world = parts.world;
     this.session = parts.session;
     this.input = parts.input;
@@ -137,6 +140,7 @@ export class GameLoop {
     this.input.captureOnClick = s.following;
     const stats = this.renderer.render(camera);
     s.camera = { ...camera, widthPx: stats.widthPx, heightPx: stats.heightPx };
+    this.tags?.update(f.view, camera, stats.widthPx, stats.heightPx);
     s.framesRendered++;
     if (s.firstFrameMs === null && f.view) s.firstFrameMs = performance.now();
     const timing = this.timer.summary();

@@ -14,6 +14,7 @@ import { installTestHook, type HookBody, type TaosState } from './test-hook.ts';
 import type { SnapshotView } from '../../shared/protocol/snapshot-frame.ts';
 import { WorldView } from './world-view.ts';
 import { Decorations } from './decorations.ts';
+import { NameTags } from './name-tags.ts';
 
 const byId = <T extends HTMLElement>(id: string): T => {
   const e = document.getElementById(id);
@@ -136,7 +137,11 @@ function join(room: string | null, name: string): void {
   const world = new WorldView(renderer, (line) => hud.log(line));
   page.world = world;
   const decorations = new Decorations(renderer, world);
-  world.onEvent = (e, removed) => decorations.onEvent(e, removed);
+  let tags: NameTags | null = null;
+  world.onEvent = (e, removed) => {
+    decorations.onEvent(e, removed);
+    tags?.onEvent(e);
+  };
   const input = new InputController(byId('scene'));
   const wsUrl = `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/`;
 
@@ -149,9 +154,12 @@ function join(room: string | null, name: string): void {
       page.error = null;
       hideMessage();
       decorations.clear();
+      tags?.clear();
+      tags = new NameTags(byId('tags'), welcome.playerId);
+      void tags.fetchNames(welcome.roomId);
       world.reset(welcome.staticBodies, welcome.dynamicBodies);
       page.loop?.stop();
-      const loop = new GameLoop({ renderer, world, decorations, session: page.session!, input, hud, welcome, onFatal: (err) => fail('Rendering failed', err.message) });
+      const loop = new GameLoop({ renderer, world, decorations, tags, session: page.session!, input, hud, welcome, onFatal: (err) => fail('Rendering failed', err.message) });
       page.loop = loop;
       // ?hud=0 starts with the HUD and help hidden (clean screenshots); H toggles them.
       const showHud = new URLSearchParams(location.search).get('hud') !== '0';

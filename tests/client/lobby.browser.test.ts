@@ -53,6 +53,8 @@ describeBrowser('lobby', () => {
     await waitForHook(other.page, "t.connected && t.roomId === 'swing'");
     const hook = await readHook<TaosState>(other.page);
     expect(hook.scenario).toBe('pendulum-chain');
+    // The maker was there first: its name comes from the room's player list and tags its character.
+    await other.page.waitForFunction(() => [...document.querySelectorAll('#tags .tag')].some((t) => t.textContent === 'maker' && !(t as HTMLElement).hidden), null, { timeout: 15_000 });
     expect(errors).toEqual([]);
   });
 });

@@ -110,6 +110,14 @@ describe('server monitor', () => {
     expect(room.players.every((p) => Number.isInteger(p.inputLeadTicks) && p.rttMs! >= 0)).toBe(true);
     expect(live!.rooms.find((r) => r.id === 'default')?.closable).toBe(false);
 
+    // The room's player list (open, like the feed that shows the same names) tags characters on the page.
+    const players = (await (await fetch(new URL('/api/rooms/arena/players', url))).json()) as { players: unknown[] };
+    expect(players.players).toEqual([
+      { playerId: wa.playerId, name: 'ann' },
+      { playerId: wb.playerId, name: 'bob' },
+    ]);
+    expect((await fetch(new URL('/api/rooms/nowhere/players', url))).status).toBe(404);
+
     const metrics = await (await fetch(new URL('/metrics', url), { headers: auth })).text();
     expect(metrics).toMatch(/^taos_room_players\{room="arena",scenario="monitor-arena"\} 2$/m);
     expect(metrics).toMatch(/^taos_room_ticks_per_second\{room="arena",scenario="monitor-arena"\} [1-9]/m);
