@@ -41,6 +41,8 @@ export class GameLoop {
   private readonly world: WorldView;
   private readonly decorations: Decorations | null;
   private readonly tags: NameTags | null;
+  /** Per-frame page extras (the scenario's objective). */
+  private readonly onFrame: ((view: SnapshotView | null) => void) | null;
   private readonly session: NetSession;
   private readonly input: InputController;
   private readonly hud: Hud;
@@ -55,10 +57,11 @@ export class GameLoop {
   private stopped = false;
   private readonly onFatal: (err: Error) => void;
 
-  constructor(parts: { renderer: Renderer; world: WorldView; decorations?: Decorations; tags?: NameTags; session: NetSession; input: InputController; hud: Hud; welcome: SessionWelcome; onFatal: (err: Error) => void }) {
+  constructor(parts: { renderer: Renderer; world: WorldView; decorations?: Decorations; tags?: NameTags; onFrame?: (view: SnapshotView | null) => void; session: NetSession; input: InputController; hud: Hud; welcome: SessionWelcome; onFatal: (err: Error) => void }) {
     this.renderer = parts.renderer;
     this.decorations = parts.decorations ?? null;
     this.tags = parts.tags ?? null;
+    this.onFrame = parts.onFrame ?? null;
     this.world = parts.world;
     this.session = parts.session;
     this.input = parts.input;
@@ -141,6 +144,7 @@ export class GameLoop {
     const stats = this.renderer.render(camera);
     s.camera = { ...camera, widthPx: stats.widthPx, heightPx: stats.heightPx };
     this.tags?.update(f.view, camera, stats.widthPx, stats.heightPx);
+    this.onFrame?.(f.view);
     s.framesRendered++;
     if (s.firstFrameMs === null && f.view) s.firstFrameMs = performance.now();
     const timing = this.timer.summary();

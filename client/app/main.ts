@@ -15,6 +15,7 @@ import type { SnapshotView } from '../../shared/protocol/snapshot-frame.ts';
 import { WorldView } from './world-view.ts';
 import { Decorations } from './decorations.ts';
 import { NameTags } from './name-tags.ts';
+import { COURSE_SCENARIO, CourseObjective, ObjectivePanel, objectiveLines } from './course-objective.ts';
 
 const byId = <T extends HTMLElement>(id: string): T => {
   const e = document.getElementById(id);
@@ -138,9 +139,12 @@ function join(room: string | null, name: string): void {
   page.world = world;
   const decorations = new Decorations(renderer, world);
   let tags: NameTags | null = null;
+  let objective: CourseObjective | null = null;
+  const objectivePanel = new ObjectivePanel(byId('objective'));
   world.onEvent = (e, removed) => {
     decorations.onEvent(e, removed);
     tags?.onEvent(e);
+    objective?.onEvent(e);
   };
   const input = new InputController(byId('scene'));
   const wsUrl = `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/`;
@@ -158,8 +162,11 @@ function join(room: string | null, name: string): void {
       tags = new NameTags(byId('tags'), welcome.playerId);
       void tags.fetchNames(welcome.roomId);
       world.reset(welcome.staticBodies, welcome.dynamicBodies);
+      objective = welcome.scenario.name === COURSE_SCENARIO ? new CourseObjective(world.staticDescriptors(), (id) => world.descriptor(id)) : null;
+      objectivePanel.show([]);
       page.loop?.stop();
-      const loop = new GameLoop({ renderer, world, decorations, tags, session: page.session!, input, hud, welcome, onFatal: (err) => fail('Rendering failed', err.message) });
+      const onFrame = (view: SnapshotView | null): void => objectivePanel.show(objective ? objectiveLines(objective.state(view)) : []);
+      const loop = new GameLoop({ renderer, world, decorations, tags, onFrame, session: page.session!, input, hud, welcome, onFatal: (err) => fail('Rendering failed', err.message) });
       page.loop = loop;
       // ?hud=0 starts with the HUD and help hidden (clean screenshots); H toggles them.
       const showHud = new URLSearchParams(location.search).get('hud') !== '0';
