@@ -24,6 +24,8 @@ const SHADOW_COLOR = [0.17, 0.19, 0.19] as const;
 /** Shadows are drawn this far above the surface below (m): above it, thin enough to read as lying on it. */
 const SHADOW_LIFT_METRES = 0.012;
 const SHADOW_DROP_METRES = 60;
+/** A body this far (m) above resting height counts as in the air. */
+const AIRBORNE_METRES = 0.25;
 /** Most shadows drawn at once (the first bodies of the view). */
 const MAX_SHADOWS = 400;
 
@@ -172,7 +174,8 @@ export class Decorations {
       const radius = footprintRadius(d.shape);
       if (radius <= 0) continue;
       const hit = occluders.castRay([x, y, z], [x, y - SHADOW_DROP_METRES, z]);
-      if (hit >= 1) continue;
+      // A body resting on what is below it hides its own shadow: only bodies in the air get one (fewer to draw).
+      if (hit >= 1 || SHADOW_DROP_METRES * hit < radius + AIRBORNE_METRES) continue;
       if (!this.shadows.has(id)) {
         try {
           this.renderer.addBody(SHADOW_IDS + id, { shape: { kind: 'cylinder', radius: Math.min(radius, 4), halfHeight: 0.004 }, isStatic: false, style: { color: SHADOW_COLOR, emissive: 0, flags: 0, visible: true } });
