@@ -3,17 +3,23 @@
 // (HTTP(S) + WebSocket on one port) until SIGINT/SIGTERM. Secrets may come from the environment (TAOS_ADMIN_TOKEN,
 // TAOS_JOIN_SECRET) so they stay out of `ps` output.
 import { readFileSync } from 'node:fs';
+import { availableParallelism } from 'node:os';
 import { DEFAULT_SCENARIO } from '../scenarios/index.ts';
 import { ADMIN_TOKEN_ENV, checkAdminTokenText } from '../server/access/admin-auth.ts';
 import { parseAllowedOrigins } from '../server/access/origin-policy.ts';
 import { JOIN_SECRET_ENV, MIN_JOIN_SECRET_LENGTH } from '../server/access/seat-tokens.ts';
 import type { ConnectionPolicyOptions } from '../server/connection-policy.ts';
+import { DEFAULT_CHECKPOINT_EVERY_SECONDS, DEFAULT_DURABILITY, DEFAULT_DURABILITY_INTERVAL_MS, DURABILITY_MODES, type DurabilityMode } from '../server/recorder.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import { LogFormat } from '../server/pretty-log.ts';
 import { runServe, type ServeOptions } from './serve.ts';
 import type { ParsedArgs } from './args.ts';
 import { UsageError, type CliIo, type CommandSpec } from './command.ts';
-import { checkParams, parseSeed, scenarioNamed } from './scenario-setup.ts';
+import { resolve as resolvePath } from 'node:path';
+import { pathToFileURL } from 'node:url';
+import { scenarioSource } from '../server/create-server.ts';
+import { isScenarioPath } from '../server/scenario-module.ts';
+import { checkParams, parseSeed, scenarioFromArg } from './scenario-setup.ts';
 
 const LOG_LEVELS = ['trace', 'debug', 'info', 'warn', 'error', 'fatal', 'silent'];
 
@@ -73,9 +79,23 @@ export function portFromEnv(env: string | undefined): number {
   return port;
 }
 
+/** --durability, --durability-interval-ms and --checkpoint-every, checked. */
+function recordingOptions(args: ParsedArgs): Pick<ServeOptions, 'durability' | 'checkpointEverySeconds'> {
+  const mode = args.string('durability') ?? DEFAULT_DURABILITY;
+  if (!(DURABILITY_MODES as readonly string[]).includes(mode)) throw new UsageError(`--durability must be one of ${DURABILITY_MODES.join(', ')}, got "${mode}"`);
+  if (args.has('durability-interval-ms') && mode !== 'interval') throw new UsageError('--durability-interval-ms goes with --durability interval');
+  return {
+    durability: { mode: mode as DurabilityMode, intervalMs: args.number('durability-interval-ms', DEFAULT_DURABILITY_INTERVAL_MS) },
+    checkpointEverySeconds: args.number('checkpoint-every', DEFAULT_CHECKPOINT_EVERY_SECONDS),
+  };
+}
+
 async function run(args: ParsedArgs, io: CliIo): Promise<number> {
   const scenario = args.string('scenario') ?? DEFAULT_SCENARIO;
-  const def = scenarioNamed(scenario);
+  const def = await scenarioFromArg(scenario);
+  // A game's own module: its scenario is the only one the server offers.
+  // Room workers import that module themselves: a definition holds functions and cannot be handed to a thread.
+  const own = isScenarioPath(scenario) ? { scenarios: scenarioSource([def]), workerScenarioModules: [pathToFileURL(resolvePath(scenario)).href] } : {};
   const params = args.pairs('param');
   checkParams(def, params);
   const record = args.string('record');
@@ -93,13 +113,15 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
     {
       port: args.has('port') ? args.number('port') : portFromEnv(process.env.PORT),
       host,
-      scenario,
+      scenario: def.name,
+      ...own,
       params,
       seed: parseSeed(args.string('seed')),
       snapshotRateHz: args.number('snapshot-rate', 30),
       recordDir: record ?? null,
       maxClients: args.number('max-clients', 32),
       maxRooms: args.number('max-rooms'),
+      roomWorkers: args.number('room-workers', availableParallelism()),
       maxConnections: args.number('max-connections'),
       connectionPolicy,
       limits: args.has('hello-timeout-ms') ? { helloTimeoutMs: args.number('hello-timeout-ms') } : undefined,
@@ -108,6 +130,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
       clientDir: args.string('client-dir'),
       logLevel,
       logFormat,
+      ...recordingOptions(args),
       ...accessOptions(args),
     },
     io,
@@ -121,21 +144,30 @@ export const serveCommand: CommandSpec = {
   details:
     'Serves the browser client at /, WebSocket play on the same port, /healthz, /metrics (Prometheus) and\n' +
     '/api/rooms. The default room runs --scenario; a client may open another room by naming a scenario as its room.\n' +
-    'With --record DIR every room writes its input log there (replay it with `replay FILE`). Logs go to stderr:\n' +
-    'readable lines on a terminal, JSON lines when piped (or with --log-format json). SIGINT/SIGTERM: clients are told why, recordings are closed, then the process exits.\n' +
+    'With --record DIR every room writes its input log there (replay it with `replay FILE`), with a checkpoint every\n' +
+    `--checkpoint-every seconds. --durability (default ${DEFAULT_DURABILITY}): "tick" writes and fdatasyncs each tick's record (group\n` +
+    'commit) before its snapshot, events or input acks leave, so a crash loses nothing any client saw, for a fraction\n' +
+    'of a millisecond per tick (docs/server.md); "interval" syncs every --durability-interval-ms and holds nothing\n' +
+    'back (a crash loses at most that much); "off" hands records to the OS every second. Logs go to stderr:\n' +
+    'readable lines on a terminal, JSON lines when piped (or with --log-format json). SIGINT/SIGTERM: clients are\n' +
+    'told why, recordings are closed, then the process exits.\n' +
     `Access control (docs/server.md): pages from other origins are refused; ${ADMIN_TOKEN_ENV} and ${JOIN_SECRET_ENV} may\n` +
     'replace --admin-token and --join-secret (the flag wins).',
   positionals: [],
   flags: [
     { name: 'port', kind: 'int', valueName: 'PORT', description: 'TCP port (0: any free port); default the PORT environment variable, else 8080', min: 0, max: 65535 },
     { name: 'host', kind: 'string', valueName: 'HOST', description: 'interface to bind; default 127.0.0.1' },
-    { name: 'scenario', kind: 'string', valueName: 'NAME', description: `scenario of the default room; default ${DEFAULT_SCENARIO}` },
+    { name: 'scenario', kind: 'string', valueName: 'NAME|FILE', description: `scenario of the default room: a built-in name or a module file (then the only one offered); default ${DEFAULT_SCENARIO}` },
     { name: 'param', kind: 'pair', valueName: 'k=v', description: 'scenario parameter (repeatable)' },
     { name: 'seed', kind: 'string', valueName: 'SEED', description: 'simulation seed of every room; default 1' },
     { name: 'snapshot-rate', kind: 'int', valueName: 'HZ', description: `snapshots per second per client (1-${TICK_RATE_HZ}); default 30`, min: 1, max: TICK_RATE_HZ },
     { name: 'record', kind: 'string', valueName: 'DIR', description: "write every room's input log into DIR" },
+    { name: 'durability', kind: 'string', valueName: 'MODE', description: `when recorded ticks reach the disk: tick, interval or off; default ${DEFAULT_DURABILITY}` },
+    { name: 'durability-interval-ms', kind: 'int', valueName: 'MS', description: `sync period of --durability interval; default ${DEFAULT_DURABILITY_INTERVAL_MS}`, min: 1, max: 60_000 },
+    { name: 'checkpoint-every', kind: 'int', valueName: 'SECONDS', description: `a checkpoint in recordings every SECONDS of play (0: none); default ${DEFAULT_CHECKPOINT_EVERY_SECONDS}`, min: 0, max: 86_400 },
     { name: 'max-clients', kind: 'int', valueName: 'N', description: 'most clients per room; default 32', min: 1, max: 1000 },
     { name: 'max-rooms', kind: 'int', valueName: 'N', description: 'most rooms at once (each is a Jolt world in the 128 MB heap); default 6', min: 1, max: 32 },
+    { name: 'room-workers', kind: 'int', valueName: 'N', description: "worker threads that run the rooms (0: every room on the main thread); default the machine's cores", min: 0, max: 256 },
     { name: 'max-connections', kind: 'int', valueName: 'N', description: 'most WebSocket connections in all; default 256', min: 1, max: 100_000 },
     { name: 'max-connections-per-address', kind: 'int', valueName: 'N', description: 'most WebSocket connections from one address (IPv6: one /64); default 32', min: 1, max: 100_000 },
     { name: 'max-pending-per-address', kind: 'int', valueName: 'N', description: 'most connections from one address that have not said hello yet; default 8', min: 1, max: 100_000 },

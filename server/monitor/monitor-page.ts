@@ -67,7 +67,9 @@ function drawRoom(r) {
   const dl = el('dl');
   stat(dl, 'tick', String(r.tick));
   stat(dl, 'ticks/s', num(r.ticksPerSecond, 1));
-  stat(dl, 'tick p50 / p99', r.tickMs ? r.tickMs.p50.toFixed(2) + ' / ' + r.tickMs.p99.toFixed(2) + ' ms' : '–');
+  if (r.tickMs || r.tickCpuMeanMs === null) stat(dl, 'tick p50 / p99', r.tickMs ? r.tickMs.p50.toFixed(2) + ' / ' + r.tickMs.p99.toFixed(2) + ' ms' : '–');
+  else stat(dl, 'tick CPU (mean)', r.tickCpuMeanMs.toFixed(2) + ' ms');
+  if (r.worker !== null) stat(dl, 'worker', '#' + r.worker);
   stat(dl, 'players', r.playerCount + (r.heldCount ? ' (' + r.heldCount + ' held)' : ''));
   stat(dl, 'bodies', String(r.bodies));
   stat(dl, 'WASM heap', r.wasmHeap ? mib(r.wasmHeap.usedBytes) + ' used, ' + mib(r.wasmHeap.freeBytes) + ' free' : '–');

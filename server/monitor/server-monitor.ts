@@ -9,6 +9,8 @@ import { CloseCode } from '../connection.ts';
 import type { GameServer } from '../game-server.ts';
 import { HttpError, HttpErrorCode } from '../http-errors.ts';
 import { DEFAULT_ROOM_ID } from '../room-manager.ts';
+import { Room } from '../room.ts';
+import { RemoteRoom } from '../workers/remote-room.ts';
 import { RateMeter } from './rate-meter.ts';
 
 /** How often the monitor samples (ms). */
@@ -37,8 +39,12 @@ export interface MonitorRoom {
   params: Readonly<Record<string, number>>;
   tick: number;
   ticksPerSecond: number;
-  /** Wall time of the last ticks (ms), null before the first tick. */
+  /** Wall time of the last 240 ticks (ms); null before the first tick, and for a room in a worker thread. */
   tickMs: { p50: number; p99: number } | null;
+  /** Mean CPU per tick (ms) a worker thread reports for its room; null for rooms on the main thread. */
+  tickCpuMeanMs: number | null;
+  /** The worker thread running the room (serve --room-workers), or null on the main thread. */
+  worker: number | null;
   snapshotRateHz: number;
   /** Players in the room, counting those held for a reconnect. */
   playerCount: number;
@@ -160,24 +166,30 @@ export class ServerMonitor {
           rttMs: s.link.rttMs === null ? null : round2(s.link.rttMs),
           inputLeadTicks: s.link.inputLeadTicks,
           lateInputs: s.stats.inputsLate,
-          missedInputTicks: room.missedInputTicks(s.player),
+          missedInputTicks: s.missedInputTicks(),
           kbpsIn: kbps(this.meter(`${key}:in`, nowMs, s.link.bytesIn, seen)),
           kbpsOut: kbps(this.meter(`${key}:out`, nowMs, s.stats.bytesSent, seen)),
         });
       }
       players.sort((a, b) => a.playerId - b.playerId);
-      const p = room.tickTimes.percentiles();
+      // A room on this thread keeps its tick times; one in a worker reports its mean CPU per tick.
+      const local = room instanceof Room ? room : null;
+      const remote = room instanceof RemoteRoom ? room : null;
+      const p = local ? local.tickTimes.percentiles() : null;
       const info = room.info();
+      const connected = players.length;
       return {
         id: room.id,
         scenario: room.scenarioName,
         params: room.params,
+        worker: remote ? remote.workerIndex : null,
         tick: info.tick,
-        ticksPerSecond: round2(this.meter(`r${room.id}:ticks`, nowMs, room.tickTimes.count, seen)),
+        ticksPerSecond: round2(this.meter(`r${room.id}:ticks`, nowMs, info.tick, seen)),
         tickMs: p ? { p50: round2(p.p50Ms), p99: round2(p.p99Ms) } : null,
-        snapshotRateHz: room.snapshotRateHz,
+        tickCpuMeanMs: remote?.status?.tickCpuMs ?? null,
+        snapshotRateHz: this.game.snapshotRateHz,
         playerCount: room.clientCount,
-        heldCount: room.heldCount,
+        heldCount: local ? local.heldCount : Math.max(0, room.clientCount - connected),
         bodies: info.bodies,
         wasmHeap: room.heapUsage(),
         kbpsIn: round2(players.reduce((a, x) => a + x.kbpsIn, 0)),

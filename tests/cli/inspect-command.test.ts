@@ -32,6 +32,8 @@ describe('inspect-command', () => {
     expect(Object.values(info.records).reduce((n, c) => n + c.bytes, 0)).toBe(whole);
     const text = await cli('inspect', path);
     expect(text.stdout).toContain('120 ticks (2.0 s at 60 Hz), up to 3 players');
+    expect((info.checkpoints as Array<{ tick: number }>).map((c) => c.tick)).toEqual([60, 120]);
+    expect(text.stdout).toContain('checkpoints: 2 at tick 60 (1.0 s), 120 (2.0 s)');
   });
 
   it('exits 1 on a corrupt log, naming the record, and 0 on a truncated one', async () => {

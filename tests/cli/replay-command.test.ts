@@ -8,6 +8,16 @@ import { readLogBytes } from '../../server/log/log-bytes.ts';
 import { getScenario } from '../../scenarios/index.ts';
 import { cli, jsonOut, retouchTick } from '../helpers/cli.ts';
 import { buildLog } from '../helpers/input-log.ts';
+import { crc32 } from '../../server/log/crc32.ts';
+
+/** Flips the last hash byte of the hash record at `offset` and recomputes the record's CRC: well-framed, wrong hash. */
+function rewriteHash(bytes: Uint8Array, offset: number, sizeBytes: number): Uint8Array {
+  const end = offset + sizeBytes;
+  bytes[end - 5] ^= 0xff;
+  const crc = crc32(bytes, offset, end - 4);
+  new DataView(bytes.buffer, bytes.byteOffset).setUint32(end - 4, crc, true);
+  return bytes;
+}
 
 let dir = '';
 let logPath = '';
@@ -107,6 +117,31 @@ describe('replay-command', () => {
     const full = jsonOut(await cli('replay', logPath, '--json', '--hashes'));
     const out = jsonOut(await cli('replay', logPath, '--json', '--to', '33'));
     expect(out).toMatchObject({ status: 'ok', log: 'stopped', ticks: 33, hashesChecked: 34, finalHash: (full.hashes as string[])[33] });
+  });
+
+  it('starts --from TICK at the last checkpoint at or before it and matches the full replay\'s hashes from there', async () => {
+    const full = jsonOut(await cli('replay', logPath, '--json', '--hashes'));
+    const out = jsonOut(await cli('replay', logPath, '--json', '--from', '95'));
+    // checkpoints every 40 ticks: 80 is the last at or before 95; 40 ticks replayed, its hash, 40 more and the end
+    expect(out).toMatchObject({ status: 'ok', startTick: 80, ticks: 40, hashesChecked: 42, finalHash: (full.hashes as string[])[120] });
+    const stopped = jsonOut(await cli('replay', logPath, '--json', '--from', '40', '--to', '50'));
+    expect(stopped).toMatchObject({ status: 'ok', startTick: 40, ticks: 10, finalHash: (full.hashes as string[])[50] });
+    const early = await cli('replay', logPath, '--from', '39');
+    expect(early.code).toBe(0);
+    expect(early.stderr).toContain('no checkpoint at or before tick 39: replayed from tick 0');
+    expect((await cli('replay', logPath, '--from', '40', '--hashes')).code).toBe(2);
+  });
+
+  it('reports a checkpoint that does not restore to its recorded hash as a divergence at that tick', async () => {
+    const entries = entriesOf(log);
+    const hash80 = entries.find((e) => e.type === 'hash' && e.tick === 80)!;
+    const bad = log.slice();
+    // Rewrite the recorded hash at tick 80 (fixing its CRC) so the checkpoint restored there cannot match it.
+    const path = join(dir, 'bad-hash.taoslog');
+    await writeFile(path, rewriteHash(bad, hash80.offset, hash80.sizeBytes));
+    const out = jsonOut(await cli('replay', path, '--json', '--from', '80'));
+    expect(out).toMatchObject({ status: 'diverged', startTick: 80, ticks: 0 });
+    expect((out.divergence as { tick: number; recordIndex: number }).recordIndex).toBe(hash80.index);
   });
 
   it('exits 1 when the log names a scenario or parameters this build does not have', async () => {

@@ -45,4 +45,13 @@ describe('serve command', () => {
     expect(r.code).toBe(2);
     expect(r.stderr).toMatch(/--log-format must be json or pretty, got "xml"/);
   });
+
+  it('checks the durability and checkpoint flags', async () => {
+    const bad = await cli('serve', '--durability', 'sometimes');
+    expect(bad.code).toBe(2);
+    expect(bad.stderr).toMatch(/--durability must be one of tick, interval, off, got "sometimes"/);
+    expect((await cli('serve', '--durability-interval-ms', '100')).stderr).toMatch(/--durability-interval-ms goes with --durability interval/);
+    expect((await cli('serve', '--checkpoint-every', '-1')).code).toBe(2);
+    expect((await cli('serve', '--help')).stdout).toMatch(/--durability MODE/);
+  });
 });

@@ -1,6 +1,11 @@
-// Tests for server/monitor/link-stats.ts: RTT from snapshot to ack (smoothed), input lead, unknown acks ignored.
+// Tests for server/monitor/link-stats.ts: RTT from snapshot to ack (smoothed), input lead, unknown acks ignored, and
+// the tick read from a framed snapshot message.
 import { describe, expect, it } from 'vitest';
-import { LinkStats } from '../../../server/monitor/link-stats.ts';
+import { LinkStats, snapshotTick } from '../../../server/monitor/link-stats.ts';
+import { encodeServerMessage } from '../../../shared/protocol/codec.ts';
+import { createSnapshotFormat } from '../../../shared/protocol/quantization.ts';
+import { encodeSnapshot } from '../../../shared/protocol/snapshot-codec.ts';
+import { emptyFrame } from '../../../shared/protocol/snapshot-frame.ts';
 
 describe('link-stats', () => {
   it('measures the round trip from a snapshot to its ack and smooths later samples', () => {
@@ -30,5 +35,17 @@ describe('link-stats', () => {
     expect(l.inputLeadTicks).toBeNull();
     l.inputArrived(105, 100);
     expect(l.inputLeadTicks).toBe(5);
+  });
+});
+
+describe('snapshotTick', () => {
+  it('reads the tick of a framed snapshot message and refuses anything else', () => {
+    const format = createSnapshotFormat({ min: { x: -10, y: -10, z: -10 }, max: { x: 10, y: 10, z: 10 } });
+    const frame = encodeSnapshot(format, emptyFrame(123_456), null);
+    const message = encodeServerMessage({ type: 'snapshot', bytes: frame, descriptors: [] });
+    expect(snapshotTick(message)).toBe(123_456);
+    expect(snapshotTick(encodeServerMessage({ type: 'pong', clientTimeMs: 1, serverTick: 5, serverTimeMs: 2, missedInputTicks: 0 }))).toBeNull();
+    expect(snapshotTick(new Uint8Array(0))).toBeNull();
+    expect(snapshotTick(message.subarray(0, 4))).toBeNull();
   });
 });

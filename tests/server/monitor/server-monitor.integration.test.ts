@@ -142,4 +142,25 @@ describe('server monitor', () => {
     const after = await (await fetch(new URL('/metrics', url), { headers: auth })).text();
     expect(after).not.toMatch(/room="arena"/);
   });
+
+  it('shows a room that runs in a worker thread, with its players, and closes it', async () => {
+    server = await startServer({ port: 0, scenario: 'shape-rain', params: { count: 2 }, roomWorkers: 1, logger: silentLogger(), metrics: createMetrics({ processMetrics: false }), clientDir: '/nonexistent-client-dir' });
+    const url = server.url;
+    const created = await fetch(new URL('/api/rooms', url), { method: 'POST', headers: { 'content-type': 'application/json' }, body: JSON.stringify({ scenario: 'shape-rain', roomId: 'away', params: { count: 3 } }) });
+    expect(created.status).toBe(201);
+    const cy = connect(server.wsUrl, { name: 'cy', room: 'away' });
+    clients.push(cy);
+    await cy.whenConnected();
+    const room = async (): Promise<MonitorState['rooms'][number] | undefined> => (await (await fetch(new URL('/monitor/state', url))).json() as MonitorState).rooms.find((r) => r.id === 'away');
+    await waitFor('the worker room with its player, ticking', async () => {
+      const r = await room();
+      return !!r && r.players.length === 1 && r.players[0].rttMs !== null && r.ticksPerSecond > 0;
+    });
+    const r = (await room())!;
+    expect(r).toMatchObject({ worker: 0, scenario: 'shape-rain', params: { count: 3 }, playerCount: 1, tickMs: null });
+    expect(r.players[0].name).toBe('cy');
+    expect((await fetch(new URL('/monitor/rooms/away/close', url), { method: 'POST' })).status).toBe(200);
+    await waitFor('cy to be closed', () => cy.state === 'closed');
+    expect(cy.closed?.reason).toBe('room-closed');
+  });
 });
