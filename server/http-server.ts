@@ -9,6 +9,7 @@ import { sendRefusal, type Refusal } from './access/refusal.ts';
 import { parseSeatRequest, type SeatAnswer, type SeatRequest } from './access/seat-request.ts';
 import { HttpError, HttpErrorCode, sendError, sendJson } from './http-errors.ts';
 import type { MonitorRoutes } from './monitor/monitor-routes.ts';
+import { isNetModeRequest, type NetModeRequest } from './net-mode-policy.ts';
 import { RoomError, type RoomInfo } from './room.ts';
 
 /** What POST /api/rooms asks for. */
@@ -16,6 +17,8 @@ export interface CreateRoomRequest {
   scenario: string;
   params?: Record<string, number>;
   roomId?: string;
+  /** 'snapshot', 'predict' or 'auto' (default: the server's --net-mode). */
+  netMode?: NetModeRequest;
 }
 
 /** What the HTTP routes read and do. Methods refuse by throwing an HttpError (or a RoomError, mapped by its code). */
@@ -74,8 +77,8 @@ function readBody(req: IncomingMessage): Promise<string> {
   });
 }
 
-const CREATE_FIELDS = ['scenario', 'params', 'roomId'] as const;
-const CREATE_SHAPE = '{"scenario": "name", "params"?: {"key": number}, "roomId"?: "id"}';
+const CREATE_FIELDS = ['scenario', 'params', 'roomId', 'netMode'] as const;
+const CREATE_SHAPE = '{"scenario": "name", "params"?: {"key": number}, "roomId"?: "id", "netMode"?: "snapshot" | "predict" | "auto"}';
 
 /** Parses and type-checks a POST /api/rooms body; names the first unknown or mistyped field. */
 export function parseCreateRoom(text: string): CreateRoomRequest {
@@ -97,6 +100,10 @@ export function parseCreateRoom(text: string): CreateRoomRequest {
   if (o.roomId !== undefined) {
     if (typeof o.roomId !== 'string') throw new HttpError(400, HttpErrorCode.BadBody, '"roomId" must be a string');
     out.roomId = o.roomId;
+  }
+  if (o.netMode !== undefined) {
+    if (!isNetModeRequest(o.netMode)) throw new HttpError(400, HttpErrorCode.BadBody, '"netMode" must be "snapshot", "predict" or "auto"');
+    out.netMode = o.netMode;
   }
   if (o.params !== undefined) {
     if (o.params === null || typeof o.params !== 'object' || Array.isArray(o.params)) throw new HttpError(400, HttpErrorCode.BadBody, '"params" must be an object of numbers');

@@ -65,6 +65,7 @@ function drawRoom(r) {
   }
   s.append(h);
   const dl = el('dl');
+  stat(dl, 'net mode', r.netMode);
   stat(dl, 'tick', String(r.tick));
   stat(dl, 'ticks/s', num(r.ticksPerSecond, 1));
   if (r.tickMs || r.tickCpuMeanMs === null) stat(dl, 'tick p50 / p99', r.tickMs ? r.tickMs.p50.toFixed(2) + ' / ' + r.tickMs.p99.toFixed(2) + ' ms' : '–');

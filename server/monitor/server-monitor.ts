@@ -1,4 +1,4 @@
-// The operators' view of a running server: every open room (scenario, ticks/s, tick p50/p99, players, bodies, WASM
+// The operators' view of a running server: every open room (scenario, net mode, ticks/s, tick p50/p99, players, bodies, WASM
 // heap, bandwidth) with its players (name, RTT, input lead, late inputs, kbps), sampled once a second on the server's
 // clock, pushed to subscribers (the SSE route) and exported as per-room Prometheus gauges. Actions: close a room, kick
 // a player. Reads rooms and sessions through their public surface; never steps or changes a simulation itself.
@@ -45,6 +45,8 @@ export interface MonitorRoom {
   tickCpuMeanMs: number | null;
   /** The worker thread running the room (serve --room-workers), or null on the main thread. */
   worker: number | null;
+  /** How the room serves its players: snapshots, or input records for predicting clients. */
+  netMode: string;
   snapshotRateHz: number;
   /** Players in the room, counting those held for a reconnect. */
   playerCount: number;
@@ -183,6 +185,7 @@ export class ServerMonitor {
         scenario: room.scenarioName,
         params: room.params,
         worker: remote ? remote.workerIndex : null,
+        netMode: info.netMode,
         tick: info.tick,
         ticksPerSecond: round2(this.meter(`r${room.id}:ticks`, nowMs, info.tick, seen)),
         tickMs: p ? { p50: round2(p.p50Ms), p99: round2(p.p99Ms) } : null,

@@ -4,8 +4,9 @@
 /**
  * Bumped on any incompatible change to a message or the snapshot bit layout; hello and welcome must agree.
  * 2: hello's optional options map (seat and resume tokens); the welcome's resume fields; seat/resume codes.
+ * 3: predict mode: the welcome's netMode, checkpoint and record messages, resync and netMode requests.
  */
-export const PROTOCOL_VERSION = 2;
+export const PROTOCOL_VERSION = 3;
 
 /** Opcodes of messages a client sends to the server (1–15). */
 export const ClientOpcode = {
@@ -14,6 +15,8 @@ export const ClientOpcode = {
   SnapshotAck: 3,
   Ping: 4,
   Bye: 5,
+  Resync: 6,
+  NetMode: 7,
 } as const;
 export type ClientOpcode = (typeof ClientOpcode)[keyof typeof ClientOpcode];
 
@@ -25,6 +28,8 @@ export const ServerOpcode = {
   Events: 19,
   Error: 20,
   Bye: 21,
+  Checkpoint: 22,
+  Record: 23,
 } as const;
 export type ServerOpcode = (typeof ServerOpcode)[keyof typeof ServerOpcode];
 

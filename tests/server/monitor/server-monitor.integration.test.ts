@@ -100,7 +100,7 @@ describe('server monitor', () => {
     abort.abort();
     expect(live).not.toBeNull();
     const room = live!.rooms.find((r) => r.id === 'arena')!;
-    expect(room).toMatchObject({ scenario: arena.name, params: { boxes: 3 }, playerCount: 2, heldCount: 0, closable: true });
+    expect(room).toMatchObject({ scenario: arena.name, params: { boxes: 3 }, netMode: 'snapshot', playerCount: 2, heldCount: 0, closable: true });
     expect(room.players.map((p) => [p.playerId, p.name])).toEqual([
       [wa.playerId, 'ann'],
       [wb.playerId, 'bob'],
