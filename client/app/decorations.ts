@@ -1,7 +1,8 @@
 // What makes the drawn world read as a game, on top of the bodies the server describes: a visor on every character
 // showing where it faces, a blob shadow under each moving body (on the static boxes below it) so height reads, and
 // impact feedback for bullets (a spark where one bounces or trips a sensor, and a flash on the body it hit). Extra
-// renderer bodies under ids no server body uses; presentation only (nothing here feeds back into the game).
+// renderer bodies under ids no server body uses; presentation only (nothing here feeds back into the game). Shadows
+// fall on static boxes and height fields (not on triangle meshes).
 import type { SnapshotView } from '../../shared/protocol/snapshot-frame.ts';
 import type { ShapeSpec } from '../../shared/physics-data/shape-spec.ts';
 import { forwardFromYaw } from '../../shared/sim/controls.ts';
@@ -63,6 +64,27 @@ export function footprintRadius(shape: ShapeSpec): number {
   }
 }
 
+type HeightField = Extract<ShapeSpec, { kind: 'heightField' }>;
+
+/** The height (m) of a static height field's surface at world (x, z), bilinear between samples; null outside it. */
+export function heightFieldSurfaceY(d: BodyDescriptor, x: number, z: number): number | null {
+  if (d.shape.kind !== 'heightField') return null;
+  const s: HeightField = d.shape;
+  const o = s.originXz ?? { x: 0, z: 0 };
+  const fx = (x - d.position.x - o.x) / s.cellSize;
+  const fz = (z - d.position.z - o.z) / s.cellSize;
+  const n = s.sampleCount;
+  if (!(fx >= 0 && fz >= 0 && fx <= n - 1 && fz <= n - 1)) return null;
+  const x0 = Math.min(n - 2, Math.floor(fx));
+  const z0 = Math.min(n - 2, Math.floor(fz));
+  const tx = fx - x0;
+  const tz = fz - z0;
+  const h = (ix: number, iz: number): number => s.heights[iz * n + ix];
+  const top = h(x0, z0) * (1 - tx) + h(x0 + 1, z0) * tx;
+  const bottom = h(x0, z0 + 1) * (1 - tx) + h(x0 + 1, z0 + 1) * tx;
+  return d.position.y + top * (1 - tz) + bottom * tz;
+}
+
 interface Tracked {
   x: number;
   y: number;
@@ -83,6 +105,8 @@ export class Decorations {
   private readonly bullets = new Map<number, Tracked>();
   private nextSpark = 0;
   private nowMs = 0;
+  /** The scene's static height fields (read once per welcome, on the first frame). */
+  private heightFields: BodyDescriptor[] | null = null;
 
   constructor(renderer: RenderTarget, world: WorldView) {
     this.renderer = renderer;
@@ -132,6 +156,22 @@ export class Decorations {
     this.sparks.clear();
     this.flashes.clear();
     this.bullets.clear();
+    this.heightFields = null;
+  }
+
+  // The highest static surface under (x, y, z) that shadows fall on: a box's top (ray cast) or a height field.
+  private groundBelow(x: number, y: number, z: number): number | null {
+    const occluders = this.world.occluders;
+    let best: number | null = null;
+    if (occluders.size > 0) {
+      const hit = occluders.castRay([x, y, z], [x, y - SHADOW_DROP_METRES, z]);
+      if (hit < 1) best = y - SHADOW_DROP_METRES * hit;
+    }
+    for (const d of this.heightFields ?? []) {
+      const g = heightFieldSurfaceY(d, x, z);
+      if (g !== null && g <= y && (best === null || g > best)) best = g;
+    }
+    return best;
   }
 
   private placeVisors(view: SnapshotView): void {
@@ -156,7 +196,8 @@ export class Decorations {
 
   private placeShadowsAndTrackBullets(view: SnapshotView): void {
     const store = this.renderer.store;
-    const occluders = this.world.occluders;
+    this.heightFields ??= this.world.staticDescriptors().filter((d) => d.shape.kind === 'heightField' && !d.hidden);
+    const canShadow = this.world.occluders.size > 0 || this.heightFields.length > 0;
     const seen = new Set<number>();
     let drawn = 0;
     for (let i = 0; i < view.ids.length; i++) {
@@ -170,12 +211,12 @@ export class Decorations {
         this.trackBullet(id, x, y, z);
         continue;
       }
-      if (drawn >= MAX_SHADOWS || occluders.size === 0) continue;
+      if (drawn >= MAX_SHADOWS || !canShadow) continue;
       const radius = footprintRadius(d.shape);
       if (radius <= 0) continue;
-      const hit = occluders.castRay([x, y, z], [x, y - SHADOW_DROP_METRES, z]);
+      const ground = this.groundBelow(x, y, z);
       // A body resting on what is below it hides its own shadow: only bodies in the air get one (fewer to draw).
-      if (hit >= 1 || SHADOW_DROP_METRES * hit < radius + AIRBORNE_METRES) continue;
+      if (ground === null || y - ground < radius + AIRBORNE_METRES) continue;
       if (!this.shadows.has(id)) {
         try {
           this.renderer.addBody(SHADOW_IDS + id, { shape: { kind: 'cylinder', radius: Math.min(radius, 4), halfHeight: 0.004 }, isStatic: false, style: { color: SHADOW_COLOR, emissive: 0, flags: 0, visible: true } });
@@ -184,7 +225,7 @@ export class Decorations {
         }
         this.shadows.set(id, true);
       }
-      store.setPose(SHADOW_IDS + id, x, y - SHADOW_DROP_METRES * hit + SHADOW_LIFT_METRES, z, 0, 0, 0, 1);
+      store.setPose(SHADOW_IDS + id, x, ground + SHADOW_LIFT_METRES, z, 0, 0, 0, 1);
       if (!this.shadows.get(id)) store.setStyle(SHADOW_IDS + id, { visible: true });
       this.shadows.set(id, true);
       seen.add(id);

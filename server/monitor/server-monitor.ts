@@ -1,6 +1,6 @@
-// The operators' view of a running server: every open room (scenario, net mode, ticks/s, tick p50/p99, players, bodies, WASM
-// heap, bandwidth) with its players (name, RTT, input lead, late inputs, kbps), sampled once a second on the server's
-// clock, pushed to subscribers (the SSE route) and exported as per-room Prometheus gauges. Actions: close a room, kick
+// The operators' view of a running server: every open room (scenario, net mode, ticks/s, tick p50/p99, players,
+// bodies, WASM heap, bandwidth) with its players (name, RTT, input lead, late inputs, kbps), sampled once a second on
+// the server's clock, pushed to subscribers (the SSE route) and exported as per-room Prometheus gauges. Actions: close a room, kick
 // a player. Reads rooms and sessions through their public surface; never steps or changes a simulation itself.
 import { Gauge } from 'prom-client';
 import type { Clock, TimerHandle } from '../../shared/clock.ts';

@@ -1,7 +1,7 @@
 // Tests for client/app/decorations.ts: a visor in front of each character along its yaw, a shadow on the static box
 // below a moving body, and a spark where a bullet bounces; nothing for bodies over no box.
 import { describe, expect, it } from 'vitest';
-import { Decorations, footprintRadius, isBullet } from '../../../client/app/decorations.ts';
+import { Decorations, footprintRadius, heightFieldSurfaceY, isBullet } from '../../../client/app/decorations.ts';
 import { WorldView, type RenderTarget } from '../../../client/app/world-view.ts';
 import { InstanceStore } from '../../../client/render/instance-store.ts';
 import { shapeMeshRef } from '../../../client/render/shape-mesh.ts';
@@ -77,5 +77,14 @@ describe('decorations', () => {
     expect(r.store.pose(sparks[0])!.slice(0, 3)).toEqual([2, 1, 0]);
     d.update(view([[3, 0, 1, 0]]), 1000);
     expect(r.store.ids().filter((id) => id >= 3 * 2 ** 40)).toHaveLength(0);
+  });
+
+  it('finds the surface of a height field under a point, between its samples', () => {
+    const hf: BodyDescriptor = { id: 7, shape: { kind: 'heightField', heights: [0, 2, 0, 2], sampleCount: 2, cellSize: 4, originXz: { x: -2, z: -2 } }, color: [1, 1, 1], motion: 'static', hidden: false, position: { x: 10, y: 1, z: 0 }, rotation: I };
+    expect(heightFieldSurfaceY(hf, 8, -2)).toBeCloseTo(1, 9);
+    expect(heightFieldSurfaceY(hf, 12, 2)).toBeCloseTo(3, 9);
+    expect(heightFieldSurfaceY(hf, 10, 0)).toBeCloseTo(2, 9);
+    expect(heightFieldSurfaceY(hf, 20, 0)).toBeNull();
+    expect(heightFieldSurfaceY(crate, 0, 0)).toBeNull();
   });
 });
