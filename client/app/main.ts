@@ -166,14 +166,19 @@ function join(room: string | null, name: string): void {
       objective = welcome.scenario.name === COURSE_SCENARIO ? new CourseObjective(world.staticDescriptors(), (id) => world.descriptor(id)) : null;
       objectivePanel.show([]);
       page.loop?.stop();
-      const onFrame = (view: SnapshotView | null): void => objectivePanel.show(objective ? objectiveLines(objective.state(view)) : []);
+      const crosshair = byId('crosshair');
+      const onFrame = (view: SnapshotView | null): void => {
+        objectivePanel.show(objective ? objectiveLines(objective.state(view)) : []);
+        // Aiming means something only from the follow camera.
+        const aiming = page.loop?.state.following ?? false;
+        if (crosshair.hidden === aiming) crosshair.hidden = !aiming;
+      };
       const loop = new GameLoop({ renderer, world, decorations, tags, onFrame, session: page.session!, input, hud, welcome, onFatal: (err) => fail('Rendering failed', err.message) });
       page.loop = loop;
       // ?hud=0 starts with the HUD and help hidden (clean screenshots); H toggles them.
       const showHud = new URLSearchParams(location.search).get('hud') !== '0';
       hud.visible = showHud;
       byId('help').hidden = !showHud;
-      byId('crosshair').hidden = false;
       hud.log(`joined ${welcome.roomId} (${welcome.scenario.name}) as #${welcome.playerId}`);
       input.attach();
       loop.start();
