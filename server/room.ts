@@ -63,6 +63,11 @@ export interface WorldFrame {
   tick: number;
   bodies: BodyStates;
   characters: readonly CharacterState[];
+  /**
+   * Descriptors of the frame's dynamic bodies as of its tick, when the frame leaves later than its tick (a durable
+   * recording holds it back until the tick is on disk) and a body spawned in it may be gone by then.
+   */
+  descriptors?: ReadonlyMap<number, BodyDescriptor>;
 }
 
 /** What a room needs from each connected member (the client session implements it). */
@@ -466,6 +471,7 @@ export class Room implements HostedRoom {
           },
           characters: this.sim.characters(),
         };
+        if (this.opts.recorder?.release) frame.descriptors = this.captureDescriptors(frame.bodies);
       }
     }
     return () => {
@@ -475,6 +481,17 @@ export class Room implements HostedRoom {
       if (events.length > 0) for (const p of members) this.safely(p, () => p.member.deliverEvents(tick, events));
       if (frame) for (const p of members) this.safely(p, () => p.member.deliverFrame(frame));
     };
+  }
+
+  private captureDescriptors(bodies: WorldFrame['bodies']): Map<number, BodyDescriptor> {
+    const out = new Map<number, BodyDescriptor>();
+    for (let i = 0; i < bodies.count; i++) {
+      const id = bodies.ids[i];
+      if (this.isSceneStatic(id)) continue;
+      const d = this.sim.bodyDescriptor(id);
+      if (d) out.set(id, d);
+    }
+    return out;
   }
 
   // A member that throws while taking a delivery is removed; the room and the other members carry on.

@@ -11,6 +11,7 @@ import { RoomError } from '../room.ts';
 import type { RoomSpec } from '../room-manager.ts';
 import { RemoteRoom, type RoomThreadLink } from './remote-room.ts';
 import { forEachSend, type EnteredRoom, type FromWorker, type MemberTraffic, type OpenedRoom, type ToWorker, type WorkerInit } from './worker-protocol.ts';
+import { siblingModuleUrl } from '../package-root.ts';
 
 /** Members of every thread share one numbering (a member id is never reused in a process). */
 let nextMemberId = 1;
@@ -53,7 +54,7 @@ export class RoomThread implements RoomThreadLink {
     this.index = init.index;
     this.logger = logger;
     this.onDied = onDied;
-    this.worker = new Worker(new URL('./room-worker.ts', import.meta.url), { workerData: init, name: `room-worker-${init.index}` });
+    this.worker = new Worker(siblingModuleUrl(import.meta.url, 'room-worker'), { workerData: init, name: `room-worker-${init.index}` });
     this.worker.on('message', (msg: FromWorker) => this.receive(msg));
     this.worker.on('error', (error) => this.died(`it threw ${error instanceof Error ? error.message : String(error)}`, error));
     this.worker.on('exit', (code) => this.died(`it exited with code ${code}`, null));
