@@ -7,8 +7,9 @@
  * 3: predict mode: the welcome's netMode, checkpoint and record messages, resync and netMode requests.
  * 4: the game API: game input values in input commands, the welcome's game schema, game state in snapshots, game
  *    messages (docs/protocol.md, docs/game-api.md).
+ * 5: the pong's room pace (roomTicksPerSecond, roomSlow).
  */
-export const PROTOCOL_VERSION = 4;
+export const PROTOCOL_VERSION = 5;
 
 /** Opcodes of messages a client sends to the server (1–15). */
 export const ClientOpcode = {
