@@ -81,7 +81,7 @@ export class GameLoop {
     // A movement key is handed to the library at once (not at the next 60 Hz sample), and starts a latency measurement.
     this.input.onMoveKeyDown = (atMs) => {
       this.session.setInput(this.input.sample(atMs));
-      this.motion.keyDown(atMs, this.state.framesRendered);
+      this.motion.keyDown(atMs, this.state.framesRendered, this.session.newestInputTick + 1);
     };
     this.rafId = requestAnimationFrame((t) => this.frame(t));
     const intervalMs = 1000 / this.welcome.tickRateHz;
@@ -164,6 +164,7 @@ export class GameLoop {
       serverTick: this.session.serverTick,
       rttMs: this.session.rttMs,
       inputLeadTicks: this.session.inputLeadTicks,
+      roomPace: this.session.roomPace,
       snapshotsPerSecond: this.history.snapshotsPerSecond(nowMs),
       kbpsIn: this.history.kbpsIn(nowMs),
       interpolationDelayMs: f.delayMs,

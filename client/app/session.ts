@@ -29,7 +29,7 @@ export function openSession(wsUrl: string, opts: { name: string; room: string | 
   );
   client.on('snapshot', (s) => handlers.onSnapshot(s.tick, s.sizeBytes, s.descriptors));
   client.on('events', (events) => handlers.onEvents(events));
-  client.on('reconnecting', (r) => handlers.onReconnecting(r.attempt, r.reason));
+  client.on('reconnecting', (r) => handlers.onReconnecting(r.attempt, r.reason, r.serverRestarting));
   client.on('closed', (c) => handlers.onClosed(c.reason, c.detail));
   client.on('serverError', (e) => handlers.onNotice(`server refused: ${e.code}: ${e.message}`));
   client.on('protocolError', (m) => handlers.onNotice(`protocol problem: ${m}`));
@@ -44,6 +44,12 @@ export function openSession(wsUrl: string, opts: { name: string; room: string | 
     },
     get inputLeadTicks() {
       return client.stats().leadTicks;
+    },
+    get newestInputTick() {
+      return client.stats().newestInputTick;
+    },
+    get roomPace() {
+      return client.stats().roomPace;
     },
     frame(nowMs: number): SessionFrame {
       const f = client.sample(nowMs);
@@ -63,6 +69,8 @@ function closedSession(): NetSession {
     serverTick: 0,
     rttMs: null,
     inputLeadTicks: null,
+    newestInputTick: -1,
+    roomPace: null,
     frame: () => ({ view: null, renderTick: 0, bufferDepth: 0, delayMs: 0 }),
     setInput: () => undefined,
     close: () => undefined,

@@ -44,7 +44,7 @@ describe('snapshotTick', () => {
     const frame = encodeSnapshot(format, emptyFrame(123_456), null);
     const message = encodeServerMessage({ type: 'snapshot', bytes: frame, descriptors: [] });
     expect(snapshotTick(message)).toBe(123_456);
-    expect(snapshotTick(encodeServerMessage({ type: 'pong', clientTimeMs: 1, serverTick: 5, serverTimeMs: 2, missedInputTicks: 0 }))).toBeNull();
+    expect(snapshotTick(encodeServerMessage({ type: 'pong', clientTimeMs: 1, serverTick: 5, serverTimeMs: 2, missedInputTicks: 0, roomTicksPerSecond: 60, roomSlow: false }))).toBeNull();
     expect(snapshotTick(new Uint8Array(0))).toBeNull();
     expect(snapshotTick(message.subarray(0, 4))).toBeNull();
   });
