@@ -3,8 +3,9 @@
 // fan-out (snapshot-fan-out.ts) that does the members' shared encoding work once per tick.
 import type { Clock } from '../shared/clock.ts';
 import { BODY_STATE_STRIDE, BodyFlag, type Vec3Like } from '../shared/physics/index.ts';
-import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '../shared/sim/types.ts';
+import type { BodyDescriptor, SimEvent, TickInputRecord } from '../shared/sim/types.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
+import { GameMessageQueue } from './game-message-queue.ts';
 import { NetMode } from '../shared/protocol/predict-messages.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
@@ -20,71 +21,9 @@ import { RoomPace, type PaceReport } from './room-pace.ts';
 import { SnapshotFanOut } from './snapshot-fan-out.ts';
 import { TickClock } from './tick-clock.ts';
 
-/** The bulk body read the room hands to snapshot encoders (the world's readBodyStates() shape). */
-export interface BodyStates {
-  count: number;
-  ids: Uint32Array;
-  states: Float32Array;
-  flags: Uint8Array;
-}
+import type { RoomMember, RoomRecorder, RoomSimulation, WorldFrame } from './room-contracts.ts';
 
-/** The part of Simulation a room drives (shared/sim/simulation.ts satisfies it). */
-export interface RoomSimulation {
-  readonly tick: number;
-  step(record: TickInputRecord): SimEvent[];
-  stateHash(): string;
-  characters(): CharacterState[];
-  readBodyStates(): BodyStates;
-  staticDescriptors(): BodyDescriptor[];
-  bodyDescriptor(id: number): BodyDescriptor | undefined | null;
-  destroy(): void;
-  /** The simulation's byte checkpoint (for checkpoints in recordings), when it has one. */
-  saveCheckpointBytes?(): Uint8Array;
-  /** The world's WASM heap (for /metrics), when the simulation has one. */
-  readonly world?: { freeHeapBytes(): number; totalHeapBytes(): number };
-}
-
-/** Where a room's input records go (the --record writer). A recorder never throws into the room. */
-export interface RoomRecorder {
-  /** The exact record about to be stepped (write-ahead). */
-  append(record: TickInputRecord): void;
-  /** After the step; `tick` is the simulation's tick counter now, `hash` computes its state hash on demand. */
-  afterStep(tick: number, hash: () => string): void;
-  /** Writes the end record (none when the hash is null: the room failed), flushes and closes. */
-  close(finalTick: number, finalHash: string | null): Promise<void>;
-  /**
-   * Calls `send` (the tick's events and frame) once the log holds the tick durably, in tick order; absent: at once.
-   * This is how nothing a client sees can be missing from the log after a crash (--durability tick).
-   */
-  release?(tick: number, send: () => void): void;
-}
-
-/** The world after one snapshot tick, shared by every member's encoder (copies: valid after the tick). */
-export interface WorldFrame {
-  /** The tick just simulated (events of that tick carry the same number). */
-  tick: number;
-  bodies: BodyStates;
-  characters: readonly CharacterState[];
-  /**
-   * Descriptors of the frame's dynamic bodies as of its tick, when the frame leaves later than its tick (a durable
-   * recording holds it back until the tick is on disk) and a body spawned in it may be gone by then.
-   */
-  descriptors?: ReadonlyMap<number, BodyDescriptor>;
-}
-
-/** What a room needs from each connected member (the client session implements it). */
-export interface RoomMember {
-  /** The tick's events (sorted, stamped), delivered reliably; called only for ticks that have events. */
-  deliverEvents(tick: number, events: readonly SimEvent[]): void;
-  /** A world frame at the member's snapshot rate. */
-  deliverFrame(frame: WorldFrame): void;
-  /** The room has closed; the member is no longer in it. */
-  roomClosed(reason: string): void;
-  /** The room removed this member (its delivery failed); the room goes on. */
-  removed(reason: string): void;
-  /** Predict mode: the framed confirmed record of `tick` (every tick, in order). */
-  deliverRecord?(tick: number, message: Uint8Array): void;
-}
+export type { BodyStates, RoomMember, RoomRecorder, RoomSimulation, WorldFrame } from './room-contracts.ts';
 
 /** A refusal with a stable code the session forwards to the client. */
 export class RoomError extends Error {
@@ -191,6 +130,7 @@ export class Room implements HostedRoom {
   private readonly opts: RoomOptions;
   private readonly players = new Map<number, Player>();
   private pendingLeaves: number[] = [];
+  private readonly gameMessages = new GameMessageQueue();
   private nextPlayerId = 1;
   private closedReason: string | null = null;
   private snapshotAccumulator = 0;
@@ -226,7 +166,13 @@ export class Room implements HostedRoom {
       if (!save) throw new Error(`room ${opts.id}: predict mode needs a simulation with saveCheckpointBytes()`);
       this.predictFeed = new PredictFeed({ get tick() { return sim.tick; }, stateHash: () => sim.stateHash(), saveCheckpointBytes: save }, opts.seed);
     }
-    this.snapshots = new SnapshotFanOut({ bounds: this.bounds, isSceneStatic: (id) => this.isSceneStatic(id), describe: (id) => sim.bodyDescriptor(id) ?? undefined });
+    this.snapshots = new SnapshotFanOut({
+      bounds: this.bounds,
+      isSceneStatic: (id) => this.isSceneStatic(id),
+      describe: (id) => sim.bodyDescriptor(id) ?? undefined,
+      gameStateVersion: () => ((sim.gameStateFields?.length ?? 0) > 0 ? (sim.gameStateVersion ?? 0) : null),
+      gameStateValues: () => sim.gameStateValues?.() ?? [],
+    });
     const initial = sim.readBodyStates();
     this.lastBodyCount = initial.count;
     for (let i = 0; i < initial.count; i++) if ((initial.flags[i] & BodyFlag.Static) !== 0) this.sceneStatics.add(initial.ids[i]);
@@ -402,6 +348,12 @@ export class Room implements HostedRoom {
     return result;
   }
 
+  /** Queues a player's game message for the next tick; returns why it was refused, or null. */
+  offerMessage(playerId: number, name: string, payload: readonly number[]): string | null {
+    if (!this.players.has(playerId)) return 'not in the room';
+    return this.gameMessages.offer(playerId, name, payload, this.sim.gameMessageKinds ?? []);
+  }
+
   /** Whether a body is part of the scene's built static geometry (sent in the welcome, not in snapshots). */
   isSceneStatic(bodyId: number): boolean {
     return this.sceneStatics.has(bodyId);
@@ -450,7 +402,8 @@ export class Room implements HostedRoom {
       if (taken.repeated) m.inputsRepeated.inc();
       commands.push({ playerId: p.playerId, input: taken.command });
     }
-    const record: TickInputRecord = { tick, leaves, joins, commands };
+    const messages = this.gameMessages.take((id) => this.players.has(id));
+    const record: TickInputRecord = messages.length > 0 ? { tick, leaves, joins, commands, messages } : { tick, leaves, joins, commands };
     this.opts.recorder?.append(record);
     const stepStarted = performance.now();
     const events = this.sim.step(record);

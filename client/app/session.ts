@@ -45,6 +45,9 @@ export function openSession(wsUrl: string, opts: { name: string; room: string | 
     get inputLeadTicks() {
       return client.stats().leadTicks;
     },
+    get newestInputTick() {
+      return client.stats().newestInputTick;
+    },
     get roomPace() {
       return client.stats().roomPace;
     },
@@ -66,6 +69,7 @@ function closedSession(): NetSession {
     serverTick: 0,
     rttMs: null,
     inputLeadTicks: null,
+    newestInputTick: -1,
     roomPace: null,
     frame: () => ({ view: null, renderTick: 0, bufferDepth: 0, delayMs: 0 }),
     setInput: () => undefined,
