@@ -78,6 +78,7 @@ export class GameServer {
     this.maxConnections = opts.maxConnections ?? 256;
     this.startedMs = this.clock.nowMs();
     this.workers = opts.workers ?? null;
+    this.workers?.registerMetrics(this.metrics.registry);
     const graceMs = opts.resumeGraceMs ?? DEFAULT_RESUME_GRACE_MS;
     const seats = opts.seats ?? null;
     if (opts.requireSeat === true && seats === null) throw new Error('requireSeat needs seat tokens (a join secret) to check');
