@@ -85,8 +85,11 @@ export interface NetClientEvents {
   bye: ServerByeMessage;
   /** A server message could not be used (undecodable, snapshot without baseline, …). */
   protocolError: string;
-  /** The link dropped and another attempt is scheduled. */
-  reconnecting: { attempt: number; delayMs: number; reason: string };
+  /**
+   * The link dropped and another attempt is scheduled. `serverRestarting`: an attempt found nothing listening after
+   * the link had worked, so the server process itself went away (a crash and restart: `serve --resume` keeps players).
+   */
+  reconnecting: { attempt: number; delayMs: number; reason: string; serverRestarting: boolean };
   /** The client stopped for good. */
   closed: ClosedInfo;
 }
@@ -168,6 +171,8 @@ export class NetClient {
   private attempts = 0;
   private reconnectCount = 0;
   private retryTimer: TimerHandle | null = null;
+  /** Since the last welcome: the server went away (nothing listening on a retry). */
+  private serverRestarting = false;
   private closedInfo: ClosedInfo | null = null;
   private resumeTokenValue: string | null;
   private waiters: Array<{ resolve: (w: WelcomeMessage) => void; reject: (e: Error) => void }> = [];
@@ -281,10 +286,11 @@ export class NetClient {
 
   /**
    * The predicted world (smoothed poses of every body and character) while this client predicts, else null: draw
-   * sample() then. The own player's newest input is already in it.
+   * sample() then. Call it once per drawn frame: it first runs the input loop's step for now, so the own player's
+   * newest input is in the frame (its tick came due) whatever the timers' phase.
    */
   predicted(): PredictedFrame | null {
-    return this.connectedSession()?.prediction?.frame() ?? null;
+    return this.connectedSession()?.predictedFrame() ?? null;
   }
 
   /** Stops predicting on this connection and goes back to interpolated snapshots (stats().prediction says why). */
@@ -386,6 +392,7 @@ export class NetClient {
     this.session?.setInput(this.input);
     if (fitted.unknown.length > 0) this.emitter.emit('protocolError', `setInput: the scenario declares no game input ${fitted.unknown.join(', ')}; dropped`);
     this.welcomeMsg = w;
+    this.serverRestarting = false;
     this.resumeTokenValue = w.resumeToken;
     this.attempts = 0;
     this.dynamic.clear();
@@ -442,8 +449,9 @@ export class NetClient {
     }
     this.attempts++;
     const delayMs = backoffDelayMs(this.policy, this.attempts, this.random);
+    if (!info.opened && this.welcomeMsg !== null) this.serverRestarting = true;
     this.setState('reconnecting');
-    this.emitter.emit('reconnecting', { attempt: this.attempts, delayMs, reason: why });
+    this.emitter.emit('reconnecting', { attempt: this.attempts, delayMs, reason: why, serverRestarting: this.serverRestarting });
     this.retryTimer = this.clock.setTimer(delayMs, () => {
       this.retryTimer = null;
       if (this.stateValue !== 'reconnecting') return;

@@ -16,7 +16,7 @@ import type { BodyDescriptor, SimEvent } from '../shared/sim/types.ts';
 import { ClockSync } from './clock-sync.ts';
 import { InputLead, InputSender, type InputLeadOptions } from './input-sender.ts';
 import { InterpolationBuffer, type InterpolatedFrame, type InterpolationOptions } from './interpolation.ts';
-import { PredictSession, type PredictOptions } from './prediction/predict-session.ts';
+import { PredictSession, type PredictedFrame, type PredictOptions } from './prediction/predict-session.ts';
 import type { Transport, TransportFactory } from './transport.ts';
 
 /** The input pump's period, in ticks. */
@@ -60,6 +60,8 @@ export interface LinkClosedInfo {
   errorBeforeWelcome: ErrorMessage | null;
   /** Closed by the client itself. */
   byClient: boolean;
+  /** Whether the connection ever opened (false: nothing answered, e.g. the server is down or restarting). */
+  opened: boolean;
 }
 
 /** Settings a LinkSession needs. */
@@ -116,6 +118,7 @@ export class LinkSession {
   private bye: ServerByeMessage | null = null;
   private errorBeforeWelcome: ErrorMessage | null = null;
   private closing = false;
+  private opened = false;
   private ended = false;
   private pingsSent = 0;
   private newestFrame: QuantizedFrame | null = null;
@@ -130,7 +133,10 @@ export class LinkSession {
     this.sender = new InputSender({ redundancy: opts.inputRedundancy });
     this.sender.setCommand(opts.input);
     this.transport = opts.transport(opts.url, {
-      open: () => this.send({ type: 'hello', version: PROTOCOL_VERSION, name: opts.name, room: opts.room, seatToken: opts.seatToken, resumeToken: opts.resumeToken }),
+      open: () => {
+        this.opened = true;
+        this.send({ type: 'hello', version: PROTOCOL_VERSION, name: opts.name, room: opts.room, seatToken: opts.seatToken, resumeToken: opts.resumeToken });
+      },
       message: (data) => this.receive(data),
       close: (code, reason) => this.end(code, reason),
     });
@@ -243,7 +249,7 @@ export class LinkSession {
     this.ended = true;
     this.clearTimers();
     this.predictSession?.dispose();
-    this.h.closed({ code, reason, welcomed: this.welcomeMsg !== null, bye: this.bye, errorBeforeWelcome: this.errorBeforeWelcome, byClient: this.closing });
+    this.h.closed({ code, reason, welcomed: this.welcomeMsg !== null, bye: this.bye, errorBeforeWelcome: this.errorBeforeWelcome, byClient: this.closing, opened: this.opened });
   }
 
   private receive(data: Uint8Array): void {
@@ -357,6 +363,22 @@ export class LinkSession {
 
   /** The input loop: runs twice per tick, sends when the target tick advanced. */
   private pump(): void {
+    this.inputStep();
+    this.schedule(this.sync!.tickMs * PUMP_SPACING_TICKS, () => this.pump());
+  }
+
+  /**
+   * A predicting client's frame: the input loop's step now (fix and send the commands of ticks that came due, run the
+   * local simulation to them), so the drawn world holds the newest own command whatever the timers' phase.
+   */
+  predictedFrame(): PredictedFrame | null {
+    const p = this.predictSession;
+    if (!p || !p.active || this.ended || this.closing) return null;
+    this.inputStep();
+    return p.frame();
+  }
+
+  private inputStep(): void {
     const sync = this.sync!;
     const lead = this.lead!;
     const now = this.o.clock.nowMs();
@@ -375,7 +397,6 @@ export class LinkSession {
       // The local simulation runs to the newest tick the sender fixed: the own command of that tick is in it.
       this.predictSession?.advance(this.sender.newestTick + 1, (t) => this.sender.commandFor(t));
     }
-    this.schedule(sync.tickMs * PUMP_SPACING_TICKS, () => this.pump());
   }
 
   private onSnapshot(bytes: Uint8Array, descriptors: BodyDescriptor[], sizeBytes: number, now: number): void {

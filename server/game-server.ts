@@ -14,6 +14,7 @@ import { createLogger, type Logger } from './logger.ts';
 import { createMetrics, renderMergedMetrics, type ServerMetrics } from './metrics.ts';
 import type { NetModeRequest } from './net-mode-policy.ts';
 import type { RoomInfo } from './room.ts';
+import type { HostedRoom } from './hosted-room.ts';
 import { RoomManager, type RoomFactory } from './room-manager.ts';
 import type { WorkerPool } from './workers/worker-pool.ts';
 
@@ -49,6 +50,10 @@ export interface GameServerOptions {
   requireSeat?: boolean;
   /** Room workers to run the rooms in (the server stops them when it closes). Default none: rooms on this thread. */
   workers?: WorkerPool | null;
+  /** Runs before the default room opens (serve --resume reopens crashed rooms here, the default one included). */
+  beforeDefaultRoom?: (server: GameServer) => Promise<void>;
+  /** Hears every resume token issued, by key (recordings keep them for --resume). */
+  onResumeTokenIssued?: (room: HostedRoom, playerId: number, key: string) => void;
 }
 
 /** The server core. */
@@ -83,7 +88,7 @@ export class GameServer {
     const seats = opts.seats ?? null;
     if (opts.requireSeat === true && seats === null) throw new Error('requireSeat needs seat tokens (a join secret) to check');
     this.access = {
-      resume: graceMs > 0 ? new ResumeTokens({ clock: this.clock, graceMs, logger: this.logger }) : null,
+      resume: graceMs > 0 ? new ResumeTokens({ clock: this.clock, graceMs, logger: this.logger, onIssue: opts.onResumeTokenIssued }) : null,
       seats,
       requireSeat: opts.requireSeat ?? false,
     };
@@ -124,6 +129,7 @@ export class GameServer {
   /** Builds the server and opens its default room (throws a clear Error for a bad scenario or parameters). */
   static async create(opts: GameServerOptions): Promise<GameServer> {
     const server = new GameServer(opts);
+    await opts.beforeDefaultRoom?.(server);
     try {
       await server.rooms.start();
     } catch (error) {
@@ -131,6 +137,11 @@ export class GameServer {
       throw new Error(`cannot open the default room (scenario ${opts.defaultScenario}): ${error instanceof Error ? error.message : String(error)}`, { cause: error });
     }
     return server;
+  }
+
+  /** The open sessions (a copy), for the monitor. */
+  sessionList(): ClientSession[] {
+    return [...this.sessions];
   }
 
   /** The Prometheus exposition of this thread's metrics summed with every room worker's. */

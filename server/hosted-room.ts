@@ -61,6 +61,8 @@ export interface HostedRoom {
   readonly scenarioName: string;
   readonly params: Readonly<Record<string, number>>;
   readonly closed: boolean;
+  /** The input log the room records into, when its host says (a room worker's); resume keys are kept beside it. */
+  readonly recordingPath?: string | null;
   /** Players in the room, counting those held for a reconnect. */
   readonly clientCount: number;
   info(): RoomInfo;

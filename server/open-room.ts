@@ -7,6 +7,7 @@ import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
 import { decideNetMode } from './net-mode-policy.ts';
 import { Room, RoomError, type RoomRecorder } from './room.ts';
+import type { PlayerInputState } from '../shared/protocol/record-delta.ts';
 import type { RoomFactory, RoomSimulationBuild, RoomSpec } from './room-manager.ts';
 
 /** What openRoom needs besides the spec. */
@@ -40,6 +41,12 @@ export async function openRoom(spec: RoomSpec, opts: OpenRoomOptions): Promise<R
     built.sim.destroy();
     throw new RoomError(ErrorCode.Internal, `cannot start the recording of room ${id}: ${error instanceof Error ? error.message : String(error)}`);
   }
+  return roomAround(spec, built, recorder, opts);
+}
+
+/** The Room (not started) around a built simulation and its recorder (a resumed room's comes from its log). */
+export function roomAround(spec: RoomSpec, built: RoomSimulationBuild, recorder: RoomRecorder | null, opts: Omit<OpenRoomOptions, 'factory'>, predictInputs?: readonly PlayerInputState[]): Room {
+  const { id, scenario, seed } = spec;
   const netModeRequested = spec.netMode ?? 'auto';
   const sim = built.sim;
   const usesGameApi = (sim.gameInputFields?.length ?? 0) + (sim.gameStateFields?.length ?? 0) + (sim.gameMessageKinds?.length ?? 0) > 0;
@@ -65,5 +72,6 @@ export async function openRoom(spec: RoomSpec, opts: OpenRoomOptions): Promise<R
     pauseWhenEmpty: opts.pauseWhenEmpty,
     recorder,
     catchUp: opts.catchUp,
+    predictInputs,
   });
 }

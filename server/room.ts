@@ -14,12 +14,14 @@ import type { HostedRoom, MemberSink, RoomEntry, Seat } from './hosted-room.ts';
 import { InputBuffer, OfferResult } from './input-buffer.ts';
 import type { NetModeRequest } from './net-mode-policy.ts';
 import { PredictFeed } from './predict-feed.ts';
+import type { PlayerInputState } from '../shared/protocol/record-delta.ts';
 import { enterRoom } from './local-seat.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
 import { RoomPace, type PaceReport } from './room-pace.ts';
 import { SnapshotFanOut } from './snapshot-fan-out.ts';
 import { TickClock } from './tick-clock.ts';
+import { TickTimes } from './monitor/tick-times.ts';
 
 import type { RoomMember, RoomRecorder, RoomSimulation, WorldFrame } from './room-contracts.ts';
 
@@ -63,6 +65,8 @@ export interface RoomOptions {
   recorder?: RoomRecorder | null;
   /** The catch-up budget of the thread the room runs on (shared by its rooms). Default none. */
   catchUp?: CatchUpGate | null;
+  /** A resumed room's players already in the game with their last commands, for predict mode's record stream. */
+  predictInputs?: readonly PlayerInputState[];
   /** How the room serves its members (decided by net-mode-policy.ts). Default snapshot. */
   netMode?: NetMode;
   /** The mode the room was asked for. Default: netMode. */
@@ -121,6 +125,8 @@ export class Room implements HostedRoom {
   readonly tickClock: TickClock;
   /** The members' shared snapshot and event work (format, quantized frame, framed messages). */
   readonly snapshots: SnapshotFanOut;
+  /** Recent tick wall times and the tick count, for the monitor. */
+  readonly tickTimes = new TickTimes();
   /** How the room serves its members. */
   readonly netMode: NetMode;
   /** The mode the room was asked for ('auto' lets the cost estimate choose). */
@@ -163,7 +169,7 @@ export class Room implements HostedRoom {
     if (this.netMode === NetMode.Predict) {
       const save = sim.saveCheckpointBytes?.bind(sim);
       if (!save) throw new Error(`room ${opts.id}: predict mode needs a simulation with saveCheckpointBytes()`);
-      this.predictFeed = new PredictFeed({ get tick() { return sim.tick; }, stateHash: () => sim.stateHash(), saveCheckpointBytes: save }, opts.seed);
+      this.predictFeed = new PredictFeed({ get tick() { return sim.tick; }, stateHash: () => sim.stateHash(), saveCheckpointBytes: save }, opts.seed, opts.predictInputs);
     }
     this.snapshots = new SnapshotFanOut({
       bounds: this.bounds,
@@ -285,6 +291,20 @@ export class Room implements HostedRoom {
       this.tickClock.start();
     }
     return { playerId, joinTick, firstInputTick };
+  }
+
+  /**
+   * A resumed room's players (in its world, their links gone with the crashed process) held like dropped players
+   * until they reconnect or leave; new players get ids after `lastPlayerId`. Only before the first tick.
+   */
+  restorePlayers(players: ReadonlyArray<{ playerId: number; name: string; last: InputCommand }>, lastPlayerId: number): void {
+    for (const { playerId, name, last } of players) {
+      const inputs = new InputBuffer(this.sim.tick, this.opts.maxInputLeadTicks ?? 120);
+      inputs.suspend(heldInput(last));
+      this.players.set(playerId, { playerId, name, member: null, inputs, inWorld: true });
+      this.opts.metrics.players.inc();
+    }
+    this.nextPlayerId = Math.max(this.nextPlayerId, lastPlayerId + 1);
   }
 
   /** Seats a member (a new player, or a held one taken back) with its welcome; rejects with a RoomError when refused. */
@@ -422,12 +442,14 @@ export class Room implements HostedRoom {
     this.cpuSecondsTotal += cpuSeconds;
     this.paceMeter.ticked(seconds * 1000, cpuSeconds * 1000);
     m.tickDuration.observe(seconds);
+    this.tickTimes.record(seconds * 1000);
     if (seconds > 1 / TICK_RATE_HZ) m.tickOverruns.inc();
   }
 
   /** Does the tick's bookkeeping now and returns what sends its events and frame (possibly later, see release). */
   private deliver(tick: number, events: readonly SimEvent[], recordMessage: Uint8Array | null): () => void {
-    for (const e of events) if (e.type === 'bodyRemoved') this.sceneStatics.delete(e.bodyId); // its id may be reused
+    // A removed scene static stays one until this tick is sent: a held frame taken before it still shows the body.
+    const removed = events.flatMap((e) => (e.type === 'bodyRemoved' ? [e.bodyId] : []));
     let frame: WorldFrame | null = null;
     this.snapshotAccumulator += this.opts.snapshotRateHz;
     if (this.snapshotAccumulator + 1e-9 >= TICK_RATE_HZ) {
@@ -454,6 +476,7 @@ export class Room implements HostedRoom {
       if (recordMessage !== null) for (const p of members) this.safely(p, () => p.member.deliverRecord?.(tick, recordMessage));
       if (events.length > 0) for (const p of members) this.safely(p, () => p.member.deliverEvents(tick, events));
       if (frame) for (const p of members) this.safely(p, () => p.member.deliverFrame(frame));
+      for (const id of removed) this.sceneStatics.delete(id); // its id may be reused
     };
   }
 

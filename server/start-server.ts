@@ -23,10 +23,13 @@ import { createMetrics, type ServerMetrics } from './metrics.ts';
 import { PACKAGE_ROOT } from './package-root.ts';
 import { createRoomFactory, type ScenarioSource } from './room-factory.ts';
 import type { DurabilityOptions } from './recorder.ts';
+import { rememberResumeKey, reopenRooms, scanForResume, type ResumeScan } from './resume-rooms.ts';
 import { checkReplayLog, withReplayLog } from './replay-log.ts';
 import { createStaticHandler } from './static-files.ts';
 import { attachWsGateway } from './ws-gateway.ts';
 import { WORKER_BUDGET_MS_PER_TICK } from './workers/room-cost.ts';
+import { createMonitorRoutes } from './monitor/monitor-routes.ts';
+import { ServerMonitor } from './monitor/server-monitor.ts';
 import { WorkerPool } from './workers/worker-pool.ts';
 
 /** Where the built browser client is served from by default. */
@@ -54,6 +57,8 @@ export interface StartServerOptions extends AccessOptions {
   durability?: DurabilityOptions;
   /** A checkpoint in recordings every N seconds of play (0: none). Default 10. */
   checkpointEverySeconds?: number;
+  /** Reopen the rooms of every interrupted recording in this directory before anything else (serve --resume). */
+  resumeDir?: string | null;
   /** Most clients per room. Default 32. */
   maxClients?: number;
   maxConnections?: number;
@@ -104,6 +109,8 @@ export interface RunningServer {
   readonly logger: Logger;
   /** Who may open a WebSocket (per-address counts, back-off). */
   readonly policy: ConnectionPolicy;
+  /** What --resume found: rooms reopened, logs refused (null without --resume). */
+  readonly resumed: ResumeScan | null;
   /** Shuts down: clients get a bye with `reason`, rooms stop, recordings end, sockets close, logs flush. Idempotent. */
   close(reason?: string): Promise<void>;
 }
@@ -164,9 +171,18 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
           logLevel: logger.level,
           logger,
         });
+  const factory = createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null, hashEveryTicks: opts.recordHashEveryTicks, durability: opts.durability, checkpointEverySeconds: opts.checkpointEverySeconds });
+  let resumed: ResumeScan | null = null;
+  const resumeDir = opts.resumeDir ?? null;
   const game = await GameServer.create({
     workers,
-    factory: createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null, hashEveryTicks: opts.recordHashEveryTicks, durability: opts.durability, checkpointEverySeconds: opts.checkpointEverySeconds }),
+    factory,
+    beforeDefaultRoom: async (server) => {
+      if (resumeDir === null) return;
+      resumed = await scanForResume(resumeDir, factory, logger);
+      await reopenRooms(server, resumed, factory, logger);
+    },
+    onResumeTokenIssued: (room, playerId, key) => rememberResumeKey(room.recordingPath ?? factory.recordingPath(room.id), room.id, playerId, key, logger),
     defaultScenario: scenarioName,
     defaultParams: opts.params,
     seed: opts.seed,
@@ -189,8 +205,9 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   const pageFiles = opts.pageDir === undefined ? null : createStaticHandler(opts.pageDir, true);
   const clientFiles = pageFiles === null ? stockFiles : async (req: IncomingMessage, res: ServerResponse) => (await pageFiles(req, res)) || stockFiles(req, res);
   const staticFiles = opts.replayFile ? withReplayLog(opts.replayFile, clientFiles) : clientFiles;
+  const monitor = new ServerMonitor(game);
   const http = createHttpServer(
-    createHttpApi({ game, scenarios, metrics, logger, access, staticFiles }),
+    createHttpApi({ game, scenarios, metrics, logger, access, staticFiles, monitor: createMonitorRoutes(monitor) }),
     (error) => logger.error({ err: error }, 'HTTP request failed'),
     opts.tls,
   );
@@ -225,6 +242,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
       });
     });
   } catch (error) {
+    monitor.close();
     await game.close('failed to start');
     await gateway.close(0);
     const e = error as NodeJS.ErrnoException;
@@ -249,8 +267,10 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     game,
     logger,
     policy,
+    resumed,
     close(reason = 'server shutting down') {
       closing ??= (async () => {
+        monitor.close();
         await game.close(reason);
         await gateway.close(1000);
         const stopped = new Promise<void>((done) => gate.close(() => done()));

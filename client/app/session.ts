@@ -29,7 +29,7 @@ export function openSession(wsUrl: string, opts: { name: string; room: string | 
   );
   client.on('snapshot', (s) => handlers.onSnapshot(s.tick, s.sizeBytes, s.descriptors));
   client.on('events', (events) => handlers.onEvents(events));
-  client.on('reconnecting', (r) => handlers.onReconnecting(r.attempt, r.reason));
+  client.on('reconnecting', (r) => handlers.onReconnecting(r.attempt, r.reason, r.serverRestarting));
   client.on('closed', (c) => handlers.onClosed(c.reason, c.detail));
   client.on('serverError', (e) => handlers.onNotice(`server refused: ${e.code}: ${e.message}`));
   client.on('protocolError', (m) => handlers.onNotice(`protocol problem: ${m}`));

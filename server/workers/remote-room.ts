@@ -42,7 +42,10 @@ export class RemoteRoom implements HostedRoom {
   private lastStatus: RoomStatus | null = null;
   private readonly opened: RoomInfo;
 
-  constructor(thread: RoomThreadLink, workerIndex: number, opened: RoomInfo) {
+  readonly recordingPath: string | null;
+
+  constructor(thread: RoomThreadLink, workerIndex: number, opened: RoomInfo, recordingPath: string | null = null) {
+    this.recordingPath = recordingPath;
     this.thread = thread;
     this.workerIndex = workerIndex;
     this.id = opened.id;

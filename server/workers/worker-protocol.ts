@@ -90,6 +90,8 @@ export interface MemberTraffic {
 /** What an `open` answers. */
 export interface OpenedRoom {
   info: RoomInfo;
+  /** The room's input log (null: not recording), so the main thread can keep resume keys beside it. */
+  recordingPath: string | null;
 }
 
 /** What an `enter` answers. */

@@ -206,7 +206,7 @@ export class WorkerRooms {
         this.postInOrder({ t: 'closed', room: id, reason });
       });
       room.start();
-      this.reply(req, { info: room.info() });
+      this.reply(req, { info: room.info(), recordingPath: this.opts.factory.recordingPath?.(id) ?? null });
     } catch (error) {
       this.fail(req, error);
     }
