@@ -113,7 +113,7 @@ export class GameServer {
       catchUp: this.clock instanceof SystemClock ? new CatchUpBudget() : null,
     });
     this.metrics.setRoomHeapSource(() => this.roomHeaps());
-    this.metrics.setRoomPaceSource(() => this.rooms.list().map((r) => ({ room: r.id, ticksPerSecond: r.ticksPerSecond, slow: r.slow })));
+    this.metrics.setRoomPaceSource(() => this.rooms.list().map((r) => ({ room: r.id, slow: r.slow })));
   }
 
   /** Each open room's WASM heap (rooms whose simulation does not report one are left out). */
