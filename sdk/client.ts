@@ -6,10 +6,14 @@ import type { Clock, TimerHandle } from '../shared/clock.ts';
 import { TOKEN_PATTERN } from '../shared/protocol/limits.ts';
 import { checkPlayerName, checkRoomId } from '../shared/protocol/validation.ts';
 import type { ErrorMessage, ServerByeMessage, WelcomeMessage } from '../shared/protocol/server-messages.ts';
-import { NEUTRAL_INPUT, validateInputCommand, type InputCommand } from '../shared/sim/input.ts';
+import { NEUTRAL_INPUT, type InputCommand } from '../shared/sim/input.ts';
+import { gameMessagePayload } from '../shared/sim/game-messages.ts';
+import type { GameStateValue, GameStateValues } from '../shared/sim/game-state.ts';
 import type { BodyDescriptor, SimEvent } from '../shared/sim/types.ts';
 import { RealClock } from './clock.ts';
 import { Emitter } from './emitter.ts';
+import { GameInputMapper, type PlayerInput } from './game-input.ts';
+import { GameStateMirror, type GameStateChange } from './game-state.ts';
 import type { InputLeadOptions } from './input-sender.ts';
 import type { InterpolatedFrame, InterpolationOptions } from './interpolation.ts';
 import { LinkSession, type LinkClosedInfo, type SnapshotInfo } from './link-session.ts';
@@ -73,14 +77,19 @@ export interface NetClientEvents {
   snapshot: SnapshotInfo;
   /** Simulation events, in tick order. */
   events: SimEvent[];
+  /** The room's game state changed (with the snapshot that brought it): the whole state and the changed names. */
+  gameState: GameStateChange;
   /** The server refused something (the connection may stay open). */
   serverError: ErrorMessage;
   /** The server said goodbye. */
   bye: ServerByeMessage;
   /** A server message could not be used (undecodable, snapshot without baseline, …). */
   protocolError: string;
-  /** The link dropped and another attempt is scheduled. */
-  reconnecting: { attempt: number; delayMs: number; reason: string };
+  /**
+   * The link dropped and another attempt is scheduled. `serverRestarting`: an attempt found nothing listening after
+   * the link had worked, so the server process itself went away (a crash and restart: `serve --resume` keeps players).
+   */
+  reconnecting: { attempt: number; delayMs: number; reason: string; serverRestarting: boolean };
   /** The client stopped for good. */
   closed: ClosedInfo;
 }
@@ -101,6 +110,8 @@ export interface NetClientStats {
   newestInputTick: number;
   /** Ticks the server repeated our previous input because the new one was late (from the last pong). */
   missedInputTicks: number | null;
+  /** The room's ticks per second over the last second and whether it runs slowed (from the last pong). */
+  roomPace: { ticksPerSecond: number; slow: boolean } | null;
   kbpsIn: number;
   bytesIn: number;
   bytesOut: number;
@@ -151,6 +162,8 @@ export class NetClient {
   private session: LinkSession | null = null;
   private stateValue: NetClientState = 'connecting';
   private input: InputCommand = { ...NEUTRAL_INPUT };
+  private readonly gameInput = new GameInputMapper();
+  private readonly gameStateMirror = new GameStateMirror();
   private welcomeMsg: WelcomeMessage | null = null;
   private readonly dynamic = new Map<number, BodyDescriptor>();
   private pendingDescriptorRemoval: Array<{ id: number; afterTick: number }> = [];
@@ -158,6 +171,8 @@ export class NetClient {
   private attempts = 0;
   private reconnectCount = 0;
   private retryTimer: TimerHandle | null = null;
+  /** Since the last welcome: the server went away (nothing listening on a retry). */
+  private serverRestarting = false;
   private closedInfo: ClosedInfo | null = null;
   private resumeTokenValue: string | null;
   private waiters: Array<{ resolve: (w: WelcomeMessage) => void; reject: (e: Error) => void }> = [];
@@ -212,6 +227,14 @@ export class NetClient {
     return this.closedInfo;
   }
 
+  /**
+   * The room's replicated game state by field name (empty until the first snapshot after a welcome); type it with
+   * your scenario's state: `client.gameState<{ score: number; phase: string }>()`.
+   */
+  gameState<S extends GameStateValues = GameStateValues>(): Readonly<Partial<S>> {
+    return this.gameStateMirror.state as Readonly<Partial<S>>;
+  }
+
   /** Subscribes to an event; returns the unsubscribe function. */
   on<K extends keyof NetClientEvents>(type: K, listener: (payload: NetClientEvents[K]) => void): () => void {
     return this.emitter.on(type, listener);
@@ -224,12 +247,24 @@ export class NetClient {
     return new Promise((resolve, reject) => this.waiters.push({ resolve, reject }));
   }
 
-  /** Sets the command sent for the coming ticks (kept across reconnects); throws on an invalid command. */
-  setInput(cmd: InputCommand): void {
-    const v = validateInputCommand(cmd);
-    if (!v.ok) throw new Error(`setInput: ${v.error}`);
-    this.input = v.command;
-    this.session?.setInput(v.command);
+  /**
+   * Sets the command sent for the coming ticks (kept across reconnects), with the scenario's game input fields by
+   * name (`{...cmd, kick: 1}`); throws on an invalid value or a field the scenario does not declare.
+   */
+  setInput(cmd: InputCommand | PlayerInput): void {
+    this.input = this.gameInput.set(cmd);
+    this.session?.setInput(this.input);
+  }
+
+  /**
+   * Sends a game message the scenario declares (`sendMessage('pickTeam', { team: 1 })`); the server stamps it with its
+   * next tick. Throws while not connected (messages are not queued across reconnects) and for an undeclared name,
+   * payload field or out-of-range value.
+   */
+  sendMessage(name: string, payload: Readonly<Record<string, number>> = {}): void {
+    const session = this.connectedSession();
+    if (!session || !this.welcomeMsg || this.stateValue !== 'connected') throw new Error(`sendMessage(${name}): not connected`);
+    session.sendGameMessage(name, gameMessagePayload(name, payload, this.welcomeMsg.scenario.game?.messages ?? []));
   }
 
   /** The estimated server tick (fractional) at a local time (default now); null before a welcome. */
@@ -282,6 +317,7 @@ export class NetClient {
       leadTicks: s?.leadTicks ?? null,
       newestInputTick: s?.newestInputTick ?? -1,
       missedInputTicks: s?.serverMissedInputTicks ?? null,
+      roomPace: s?.serverRoomPace ?? null,
       kbpsIn: this.session?.kbpsIn(nowMs) ?? 0,
       bytesIn: this.session?.counters.bytesIn ?? 0,
       bytesOut: this.session?.counters.bytesOut ?? 0,
@@ -338,6 +374,7 @@ export class NetClient {
         welcome: (w) => this.session === session && this.onWelcome(w),
         snapshot: (s) => this.session === session && this.onSnapshot(s),
         events: (e) => this.session === session && this.emitter.emit('events', e),
+        gameState: (values) => this.session === session && this.onGameState(values),
         serverError: (e) => this.session === session && this.emitter.emit('serverError', e),
         bye: (b) => this.session === session && this.emitter.emit('bye', b),
         protocolError: (m) => this.session === session && this.emitter.emit('protocolError', m),
@@ -348,7 +385,13 @@ export class NetClient {
   }
 
   private onWelcome(w: WelcomeMessage): void {
+    const fitted = this.gameInput.welcome(w.scenario.game?.input ?? []);
+    this.input = fitted.command;
+    this.gameStateMirror.welcome(w.scenario.game?.state ?? []);
+    this.session?.setInput(this.input);
+    if (fitted.unknown.length > 0) this.emitter.emit('protocolError', `setInput: the scenario declares no game input ${fitted.unknown.join(', ')}; dropped`);
     this.welcomeMsg = w;
+    this.serverRestarting = false;
     this.resumeTokenValue = w.resumeToken;
     this.attempts = 0;
     this.dynamic.clear();
@@ -358,6 +401,12 @@ export class NetClient {
     this.setState('connected');
     this.emitter.emit('welcome', w);
     for (const waiter of this.waiters.splice(0)) waiter.resolve(w);
+  }
+
+  private onGameState(values: GameStateValue[]): void {
+    const change = this.gameStateMirror.apply(values);
+    if (typeof change === 'string') this.emitter.emit('protocolError', change);
+    else if (change !== null) this.emitter.emit('gameState', change);
   }
 
   private onSnapshot(s: SnapshotInfo): void {
@@ -399,8 +448,9 @@ export class NetClient {
     }
     this.attempts++;
     const delayMs = backoffDelayMs(this.policy, this.attempts, this.random);
+    if (!info.opened && this.welcomeMsg !== null) this.serverRestarting = true;
     this.setState('reconnecting');
-    this.emitter.emit('reconnecting', { attempt: this.attempts, delayMs, reason: why });
+    this.emitter.emit('reconnecting', { attempt: this.attempts, delayMs, reason: why, serverRestarting: this.serverRestarting });
     this.retryTimer = this.clock.setTimer(delayMs, () => {
       this.retryTimer = null;
       if (this.stateValue !== 'reconnecting') return;

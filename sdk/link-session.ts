@@ -1,6 +1,7 @@
 // One connection's lifetime inside the client: hello → welcome, pings and clock sync, the input loop (target tick =
 // estimated server tick at arrival + adaptive lead, with redundancy), snapshot decode → ack → interpolation, events
 // and errors. NetClient creates a new LinkSession per (re)connection and owns reconnect policy and public events.
+import type { GameStateValue } from '../shared/sim/game-state.ts';
 import type { Clock, TimerHandle } from '../shared/clock.ts';
 import type { ClientMessage } from '../shared/protocol/client-messages.ts';
 import { encodeClientMessage } from '../shared/protocol/codec.ts';
@@ -39,6 +40,8 @@ export interface SnapshotInfo {
 export interface LinkSessionHandlers {
   welcome(w: WelcomeMessage): void;
   snapshot(s: SnapshotInfo): void;
+  /** A snapshot carried the room's game state (values in the welcome's state-field order). */
+  gameState(values: GameStateValue[]): void;
   events(events: SimEvent[]): void;
   serverError(e: ErrorMessage): void;
   bye(b: ServerByeMessage): void;
@@ -57,6 +60,8 @@ export interface LinkClosedInfo {
   errorBeforeWelcome: ErrorMessage | null;
   /** Closed by the client itself. */
   byClient: boolean;
+  /** Whether the connection ever opened (false: nothing answered, e.g. the server is down or restarting). */
+  opened: boolean;
 }
 
 /** Settings a LinkSession needs. */
@@ -109,9 +114,11 @@ export class LinkSession {
   private readonly sender: InputSender;
   private lead: InputLead | null = null;
   private missedInputTicks: number | null = null;
+  private roomPace: { ticksPerSecond: number; slow: boolean } | null = null;
   private bye: ServerByeMessage | null = null;
   private errorBeforeWelcome: ErrorMessage | null = null;
   private closing = false;
+  private opened = false;
   private ended = false;
   private pingsSent = 0;
   private newestFrame: QuantizedFrame | null = null;
@@ -126,7 +133,10 @@ export class LinkSession {
     this.sender = new InputSender({ redundancy: opts.inputRedundancy });
     this.sender.setCommand(opts.input);
     this.transport = opts.transport(opts.url, {
-      open: () => this.send({ type: 'hello', version: PROTOCOL_VERSION, name: opts.name, room: opts.room, seatToken: opts.seatToken, resumeToken: opts.resumeToken }),
+      open: () => {
+        this.opened = true;
+        this.send({ type: 'hello', version: PROTOCOL_VERSION, name: opts.name, room: opts.room, seatToken: opts.seatToken, resumeToken: opts.resumeToken });
+      },
       message: (data) => this.receive(data),
       close: (code, reason) => this.end(code, reason),
     });
@@ -157,6 +167,11 @@ export class LinkSession {
     return this.sender.newestTick;
   }
 
+  /** The room's ticks per second and whether it runs slowed (last pong); null before one. */
+  get serverRoomPace(): { ticksPerSecond: number; slow: boolean } | null {
+    return this.roomPace;
+  }
+
   /** Ticks the server reported it had to repeat our input (last pong). */
   get serverMissedInputTicks(): number | null {
     return this.missedInputTicks;
@@ -183,6 +198,11 @@ export class LinkSession {
     let bytes = 0;
     for (const [, b] of this.inLog) bytes += b;
     return (bytes * 8) / 1000;
+  }
+
+  /** Sends a game message now (after the welcome). */
+  sendGameMessage(name: string, payload: number[]): void {
+    this.send({ type: 'game', name, payload });
   }
 
   /** Sets the command for ticks from now on. */
@@ -229,7 +249,7 @@ export class LinkSession {
     this.ended = true;
     this.clearTimers();
     this.predictSession?.dispose();
-    this.h.closed({ code, reason, welcomed: this.welcomeMsg !== null, bye: this.bye, errorBeforeWelcome: this.errorBeforeWelcome, byClient: this.closing });
+    this.h.closed({ code, reason, welcomed: this.welcomeMsg !== null, bye: this.bye, errorBeforeWelcome: this.errorBeforeWelcome, byClient: this.closing, opened: this.opened });
   }
 
   private receive(data: Uint8Array): void {
@@ -260,9 +280,11 @@ export class LinkSession {
         this.counters.pongs++;
         this.sync.addSample({ sentLocalMs: m.clientTimeMs, receivedLocalMs: now, serverTick: m.serverTick, serverTimeMs: m.serverTimeMs });
         this.missedInputTicks = m.missedInputTicks;
+        this.roomPace = { ticksPerSecond: m.roomTicksPerSecond, slow: m.roomSlow };
         return;
       case 'snapshot':
         this.onSnapshot(m.bytes, m.descriptors, sizeBytes, now);
+        if (m.state !== undefined && this.welcomeMsg !== null) this.h.gameState(m.state);
         return;
       case 'events':
         this.h.events(m.events);

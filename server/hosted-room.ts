@@ -35,6 +35,11 @@ export interface Seat {
   readonly welcome: WelcomeMessage;
   /** Offers a validated command stamped for `tick`; null when the result is not known here (room in a worker). */
   offerInput(tick: number, command: InputCommand): OfferResult | null;
+  /**
+   * Queues a game message (its kind already checked against the welcome's schema) for the room's next tick; returns
+   * why the room refused it, or null (accepted, or not known here: a room in a worker drops what it refuses).
+   */
+  offerMessage(name: string, payload: readonly number[]): string | null;
   /** The client acknowledged the snapshot of `tick`. */
   acknowledge(tick: number): void;
   /**
@@ -46,6 +51,8 @@ export interface Seat {
   serverTick(): number;
   /** Ticks on which this player's input had not arrived and the last one was repeated. */
   missedInputTicks(): number;
+  /** The room's ticks per second over the last second and whether it runs slowed (for the player's HUD). */
+  pace(): { ticksPerSecond: number; slow: boolean };
 }
 
 /** A room as the room manager, the sessions, the HTTP API and the resume tokens use it. */
@@ -54,6 +61,8 @@ export interface HostedRoom {
   readonly scenarioName: string;
   readonly params: Readonly<Record<string, number>>;
   readonly closed: boolean;
+  /** The input log the room records into, when its host says (a room worker's); resume keys are kept beside it. */
+  readonly recordingPath?: string | null;
   /** Players in the room, counting those held for a reconnect. */
   readonly clientCount: number;
   info(): RoomInfo;

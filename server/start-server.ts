@@ -23,9 +23,11 @@ import { createMetrics, type ServerMetrics } from './metrics.ts';
 import { PACKAGE_ROOT } from './package-root.ts';
 import { createRoomFactory, type ScenarioSource } from './room-factory.ts';
 import type { DurabilityOptions } from './recorder.ts';
+import { rememberResumeKey, reopenRooms, scanForResume, type ResumeScan } from './resume-rooms.ts';
 import { checkReplayLog, withReplayLog } from './replay-log.ts';
 import { createStaticHandler } from './static-files.ts';
 import { attachWsGateway } from './ws-gateway.ts';
+import { WORKER_BUDGET_MS_PER_TICK } from './workers/room-cost.ts';
 import { WorkerPool } from './workers/worker-pool.ts';
 
 /** Where the built browser client is served from by default. */
@@ -53,6 +55,8 @@ export interface StartServerOptions extends AccessOptions {
   durability?: DurabilityOptions;
   /** A checkpoint in recordings every N seconds of play (0: none). Default 10. */
   checkpointEverySeconds?: number;
+  /** Reopen the rooms of every interrupted recording in this directory before anything else (serve --resume). */
+  resumeDir?: string | null;
   /** Most clients per room. Default 32. */
   maxClients?: number;
   maxConnections?: number;
@@ -103,6 +107,8 @@ export interface RunningServer {
   readonly logger: Logger;
   /** Who may open a WebSocket (per-address counts, back-off). */
   readonly policy: ConnectionPolicy;
+  /** What --resume found: rooms reopened, logs refused (null without --resume). */
+  readonly resumed: ResumeScan | null;
   /** Shuts down: clients get a bye with `reason`, rooms stop, recordings end, sockets close, logs flush. Idempotent. */
   close(reason?: string): Promise<void>;
 }
@@ -155,6 +161,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
             maxClientsPerRoom: opts.maxClients ?? 32,
             recordDir: opts.recordDir ?? null,
             recordHashEveryTicks: opts.recordHashEveryTicks,
+            budgetMsPerTick: WORKER_BUDGET_MS_PER_TICK,
             durability: opts.durability,
             checkpointEverySeconds: opts.checkpointEverySeconds,
           },
@@ -162,9 +169,18 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
           logLevel: logger.level,
           logger,
         });
+  const factory = createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null, hashEveryTicks: opts.recordHashEveryTicks, durability: opts.durability, checkpointEverySeconds: opts.checkpointEverySeconds });
+  let resumed: ResumeScan | null = null;
+  const resumeDir = opts.resumeDir ?? null;
   const game = await GameServer.create({
     workers,
-    factory: createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null, hashEveryTicks: opts.recordHashEveryTicks, durability: opts.durability, checkpointEverySeconds: opts.checkpointEverySeconds }),
+    factory,
+    beforeDefaultRoom: async (server) => {
+      if (resumeDir === null) return;
+      resumed = await scanForResume(resumeDir, factory, logger);
+      await reopenRooms(server, resumed, factory, logger);
+    },
+    onResumeTokenIssued: (room, playerId, key) => rememberResumeKey(room.recordingPath ?? factory.recordingPath(room.id), room.id, playerId, key, logger),
     defaultScenario: scenarioName,
     defaultParams: opts.params,
     seed: opts.seed,
@@ -247,6 +263,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     game,
     logger,
     policy,
+    resumed,
     close(reason = 'server shutting down') {
       closing ??= (async () => {
         await game.close(reason);

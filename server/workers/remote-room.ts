@@ -19,6 +19,7 @@ export interface RoomThreadLink {
   detach(room: string, playerId: number): void;
   close(room: string, reason: string): Promise<void>;
   queueInput(member: number, tick: number, command: InputCommand): void;
+  queueMessage(member: number, name: string, payload: readonly number[]): void;
   queueAck(member: number, tick: number): void;
   /** Serve the member in predict mode (again: a resync) or on snapshots. */
   queueNetMode(member: number, mode: NetMode): void;
@@ -41,7 +42,10 @@ export class RemoteRoom implements HostedRoom {
   private lastStatus: RoomStatus | null = null;
   private readonly opened: RoomInfo;
 
-  constructor(thread: RoomThreadLink, workerIndex: number, opened: RoomInfo) {
+  readonly recordingPath: string | null;
+
+  constructor(thread: RoomThreadLink, workerIndex: number, opened: RoomInfo, recordingPath: string | null = null) {
+    this.recordingPath = recordingPath;
     this.thread = thread;
     this.workerIndex = workerIndex;
     this.id = opened.id;
@@ -66,7 +70,17 @@ export class RemoteRoom implements HostedRoom {
 
   info(): RoomInfo {
     const s = this.lastStatus;
-    return { ...this.opened, clients: this.players.size, tick: this.lastTick, bodies: s ? s.bodies : this.opened.bodies };
+    return {
+      ...this.opened,
+      clients: this.players.size,
+      tick: this.lastTick,
+      bodies: s ? s.bodies : this.opened.bodies,
+      ticksPerSecond: s ? s.ticksPerSecond : this.opened.ticksPerSecond,
+      slow: s ? s.slow : this.opened.slow,
+      tickMsP99: s ? s.tickMsP99 : this.opened.tickMsP99,
+      tickCpuMsP99: s ? s.tickCpuMsP99 : this.opened.tickCpuMsP99,
+      tickGapMsMax: s ? s.tickGapMsMax : this.opened.tickGapMsMax,
+    };
   }
 
   heapUsage(): { usedBytes: number; freeBytes: number } | null {
@@ -114,7 +128,12 @@ export class RemoteRoom implements HostedRoom {
         thread.queueInput(member, tick, command);
         return null;
       },
+      offerMessage: (name, payload) => {
+        thread.queueMessage(member, name, payload);
+        return null;
+      },
       acknowledge: (tick) => thread.queueAck(member, tick),
+      pace: () => ({ ticksPerSecond: this.lastStatus?.ticksPerSecond ?? 0, slow: this.lastStatus?.slow ?? false }),
       setNetMode: (mode) => thread.queueNetMode(member, mode),
       serverTick: () => this.lastTick,
       missedInputTicks: () => {
