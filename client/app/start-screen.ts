@@ -10,6 +10,10 @@ export interface RoomSummary {
   clients: number;
   tick: number;
   bodies: number;
+  /** 'predict': the page runs the room's simulation itself; 'snapshot': it draws the server's snapshots. */
+  netMode?: string;
+  /** Why the room serves snapshots although predicted play was asked for or allowed. */
+  netModeNote?: string;
 }
 
 /** A scenario as GET /api/scenarios describes it. */
@@ -114,7 +118,9 @@ export function showStartScreen(root: HTMLElement, lobby: { rooms: RoomSummary[]
     for (const room of lobby.rooms) {
       const li = el('li', '');
       const desc = lobby.scenarios.get(room.scenario)?.description ?? '';
-      li.append(el('span', 'name', `${room.id} · ${room.scenario}`), el('span', 'desc', desc), el('span', 'meta', `${room.clients} connected · ${room.bodies} bodies · tick ${room.tick}`));
+      const mode = room.netMode === 'predict' ? 'predicted play' : 'snapshots';
+      li.append(el('span', 'name', `${room.id} · ${room.scenario}`), el('span', 'desc', desc), el('span', 'meta', `${room.clients} connected · ${room.bodies} bodies · tick ${room.tick} · ${mode}`));
+      if (room.netModeNote) li.append(el('span', 'meta', room.netModeNote));
       const b = el('button', '', 'Join');
       b.type = 'button';
       b.dataset.room = room.id;
