@@ -362,7 +362,7 @@ export class PhysicsWorld {
       sensor: info.opts.sensor,
     });
     this.table.add(handle);
-    this.stateReader.invalidate();
+    this.stateReader.add(handle);
     return handle;
   }
 
@@ -370,7 +370,7 @@ export class PhysicsWorld {
     this.sensors.forgetBody(handle.joltId);
     this.slots.release(handle.joltId);
     this.table.delete(handle);
-    this.stateReader.invalidate();
+    this.stateReader.remove(handle);
     if (this.ccdIds.delete(handle.id)) this.stepBudget.release('ccdBody');
     handle.removed = true;
   }
