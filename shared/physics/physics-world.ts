@@ -303,7 +303,9 @@ export class PhysicsWorld {
   /** Throws a clear Error unless the heap can take a full state save and still keep the reserve. */
   ensureRoomForStateSave(what: string): void {
     this.live();
-    ensureHeapRoom(this.freeHeapBytes(), this.stateSaveHeapBytes(), this.minFreeHeapBytes, what);
+    const bytes = this.stateSaveHeapBytes();
+    ensureHeapRoom(this.heapGauge.freeBytesFor(bytes, this.minFreeHeapBytes), bytes, this.minFreeHeapBytes, what);
+    this.heapGauge.grant(bytes);
   }
 
   /**

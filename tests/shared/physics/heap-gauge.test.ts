@@ -1,5 +1,5 @@
-// Tests of the free-heap gauge: spawning far from the reserve reads the heap only every REFRESH_EVERY bodies, near
-// the reserve every spawn reads it exactly, and worlds on one module share one gauge.
+// Tests of the free-heap gauge: spawns and state-save checks far from the reserve read the heap only every
+// REFRESH_EVERY grants, near the reserve every spawn reads it exactly, and worlds on one module share one gauge.
 import { describe, expect, it } from 'vitest';
 import { heapGaugeOf, REFRESH_EVERY, SLACK_BYTES } from '../../../shared/physics/heap-gauge.ts';
 import { ballast, makeWorld } from '../../helpers/physics.ts';
@@ -13,6 +13,16 @@ describe('heap-gauge', () => {
     const reads = gauge.exactReads - before;
     expect(reads).toBeGreaterThanOrEqual(Math.floor(1000 / REFRESH_EVERY));
     expect(reads).toBeLessThanOrEqual(Math.ceil(1000 / REFRESH_EVERY) + 1);
+    w.destroy();
+  });
+
+  it('checks room for state saves from the estimate too while the heap is far from full', async () => {
+    const w = await makeWorld();
+    for (let i = 0; i < 50; i++) w.addSphere(0.1, { x: i, y: 10, z: 0 });
+    const gauge = heapGaugeOf(w.jolt);
+    const before = gauge.exactReads;
+    for (let i = 0; i < 200; i++) w.ensureRoomForStateSave('save');
+    expect(gauge.exactReads - before).toBeLessThanOrEqual(Math.ceil(200 / REFRESH_EVERY) + 1);
     w.destroy();
   });
 
