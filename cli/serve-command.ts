@@ -15,6 +15,38 @@ import { UsageError, type CliIo, type CommandSpec } from './command.ts';
 import { checkParams, parseSeed, scenarioNamed } from './scenario-setup.ts';
 
 const LOG_LEVELS = ['trace', 'debug', 'info', 'warn', 'error', 'fatal', 'silent'];
+/** The environment variable that may hold --redis (its URL can carry a password). */
+const REDIS_URL_ENV = 'TAOS_REDIS_URL';
+
+/** The fleet flags (--redis or TAOS_REDIS_URL, --public-url, --fleet-ttl, --fleet-prefix), checked; undefined without Redis. */
+function fleetOptions(args: ParsedArgs): ServeOptions['fleet'] {
+  const redisUrl = secret(args, 'redis', REDIS_URL_ENV);
+  const publicUrl = args.string('public-url');
+  if (redisUrl === null) {
+    for (const flag of ['public-url', 'fleet-ttl', 'fleet-prefix']) if (args.has(flag)) throw new UsageError(`--${flag} needs --redis URL (or ${REDIS_URL_ENV})`);
+    return undefined;
+  }
+  let protocol: string;
+  try {
+    protocol = new URL(redisUrl).protocol;
+  } catch {
+    throw new UsageError(`--redis must be a redis:// or rediss:// URL`);
+  }
+  if (protocol !== 'redis:' && protocol !== 'rediss:') throw new UsageError(`--redis must be a redis:// or rediss:// URL, got a ${protocol} URL`);
+  if (publicUrl !== undefined) {
+    let ok = false;
+    try {
+      const p = new URL(publicUrl).protocol;
+      ok = p === 'http:' || p === 'https:';
+    } catch {
+      ok = false;
+    }
+    if (!ok) throw new UsageError(`--public-url must be an http:// or https:// URL where players reach this server, got ${JSON.stringify(publicUrl)}`);
+  }
+  const prefix = args.string('fleet-prefix');
+  if (prefix !== undefined && !/^[A-Za-z0-9_.:-]{1,64}$/.test(prefix)) throw new UsageError('--fleet-prefix must be 1-64 characters of A-Z a-z 0-9 _ . : -');
+  return { redisUrl, publicUrl, ttlSeconds: args.has('fleet-ttl') ? args.number('fleet-ttl') : undefined, prefix };
+}
 
 /** The PEM files of --tls-cert and --tls-key (both or neither), read now so a typo is a usage error. */
 function readTls(certPath: string | undefined, keyPath: string | undefined): { cert: Buffer; key: Buffer } | undefined {
@@ -96,6 +128,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
       tls: readTls(args.string('tls-cert'), args.string('tls-key')),
       clientDir: args.string('client-dir'),
       logLevel,
+      fleet: fleetOptions(args),
       ...accessOptions(args),
     },
     io,
@@ -138,6 +171,10 @@ export const serveCommand: CommandSpec = {
     { name: 'join-secret', kind: 'string', valueName: 'SECRET', description: `HMAC key of seat tokens, shared by servers that accept each other's seats (or ${JOIN_SECRET_ENV}); default random` },
     { name: 'require-seat', kind: 'boolean', description: 'admit only players whose hello carries a seat token (needs an admin token)' },
     { name: 'seat-ttl', kind: 'int', valueName: 'SECONDS', description: 'lifetime of a seat token; default 60', min: 1, max: 3600 },
+    { name: 'redis', kind: 'string', valueName: 'URL', description: `join a fleet of servers through this Redis directory (or ${REDIS_URL_ENV}); default: one process` },
+    { name: 'public-url', kind: 'string', valueName: 'URL', description: 'with --redis: where players reach this server (http:// or https://); default the listening address' },
+    { name: 'fleet-ttl', kind: 'int', valueName: 'SECONDS', description: 'with --redis: a silent server and its rooms leave the directory after this long; default 10', min: 1, max: 3600 },
+    { name: 'fleet-prefix', kind: 'string', valueName: 'PREFIX', description: 'with --redis: prefix of every directory key (one Redis, several fleets); default taos:' },
     { name: 'resume-grace', kind: 'int', valueName: 'SECONDS', description: 'how long a dropped player is held for a reconnect (0: off); default 30', min: 0, max: 3600 },
   ],
   run,

@@ -12,7 +12,7 @@ import { CloseCode, type ServerConnection } from './connection.ts';
 import { createLogger, type Logger } from './logger.ts';
 import { createMetrics, type ServerMetrics } from './metrics.ts';
 import type { RoomInfo } from './room.ts';
-import { RoomManager, type RoomFactory } from './room-manager.ts';
+import { RoomManager, type RoomDirectory, type RoomFactory } from './room-manager.ts';
 
 /** Options of GameServer.create. */
 export interface GameServerOptions {
@@ -42,6 +42,8 @@ export interface GameServerOptions {
   seats?: SeatTokens | null;
   /** Refuse hellos without a valid seat token. Needs `seats`. Default false. */
   requireSeat?: boolean;
+  /** With a fleet (`--redis`): room ids are claimed fleet-wide here (server/fleet/). */
+  directory?: RoomDirectory;
 }
 
 /** The server core. */
@@ -91,6 +93,7 @@ export class GameServer {
       maxCatchUpTicks: opts.maxCatchUpTicks,
       maxInputLeadTicks: opts.maxInputLeadTicks,
       pauseWhenEmpty: opts.pauseWhenEmpty,
+      directory: opts.directory,
     });
     this.metrics.setRoomHeapSource(() => this.roomHeaps());
   }

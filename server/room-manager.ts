@@ -37,6 +37,18 @@ export interface RoomFactory {
   hasScenario(scenario: string): boolean;
 }
 
+/** Fleet-wide room ids (server/fleet/): an id is claimed before its room opens and given back when it closes. */
+export interface RoomDirectory {
+  /** Resolves once this process holds `id`; rejects with a RoomError (a RoomMovedError when another server has it). */
+  claim(id: string): Promise<void>;
+  /** Gives back the claim on `id` (its room closed, or failed to open). */
+  release(id: string): void;
+  /** Rejects with a RoomMovedError when another server hosts `id`; resolves when none does. */
+  locate(id: string): Promise<void>;
+  /** The room `id` (claimed before) is open now: the fleet may list it. */
+  opened(id: string): void;
+}
+
 /** Options of RoomManager. */
 export interface RoomManagerOptions {
   clock: Clock;
@@ -57,6 +69,8 @@ export interface RoomManagerOptions {
   maxCatchUpTicks?: number;
   maxInputLeadTicks?: number;
   pauseWhenEmpty?: boolean;
+  /** With a fleet: where room ids are claimed fleet-wide (the default room is each process's own, never claimed). */
+  directory?: RoomDirectory;
 }
 
 /** Where a client wants to go: an existing room by id, a new room from a scenario, or the default room. */
@@ -124,6 +138,7 @@ export class RoomManager {
       }
       const pending = this.creating.get(req.roomId);
       if (pending) return pending;
+      if (this.opts.directory && req.roomId !== DEFAULT_ROOM_ID) await this.opts.directory.locate(req.roomId);
       // A room id that names a scenario opens a room of that scenario on demand (hello carries only a room id).
       const scenario = req.scenario ?? (this.opts.factory.hasScenario(req.roomId) ? req.roomId : undefined);
       if (scenario === undefined) {
@@ -132,10 +147,17 @@ export class RoomManager {
       return this.create(req.roomId, scenario, req.params ?? {});
     }
     if (req.scenario !== undefined) {
-      let id: string;
-      do id = `${req.scenario}-${this.nextRoomNumber++}`.slice(0, 64);
-      while (this.rooms.has(id) || this.creating.has(id));
-      return this.create(id, req.scenario, req.params ?? {});
+      // With a fleet another server may hold the next number already: its claim refuses ours, so try the next.
+      for (let attempt = 0; ; attempt++) {
+        let id: string;
+        do id = `${req.scenario}-${this.nextRoomNumber++}`.slice(0, 64);
+        while (this.rooms.has(id) || this.creating.has(id));
+        try {
+          return await this.create(id, req.scenario, req.params ?? {});
+        } catch (error) {
+          if (!(error instanceof RoomError && error.code === ErrorCode.RoomMoved) || attempt >= 20) throw error;
+        }
+      }
     }
     const def = this.rooms.get(DEFAULT_ROOM_ID);
     if (!def) throw new RoomError(ErrorCode.RoomNotFound, 'the default room is not open');
@@ -160,6 +182,21 @@ export class RoomManager {
   }
 
   private async build(id: string, scenario: string, params: Readonly<Record<string, number>>): Promise<Room> {
+    const directory = id === DEFAULT_ROOM_ID ? undefined : this.opts.directory;
+    if (!directory) return this.buildClaimed(id, scenario, params);
+    await directory.claim(id);
+    try {
+      const room = await this.buildClaimed(id, scenario, params);
+      room.onClose(() => directory.release(id));
+      directory.opened(id);
+      return room;
+    } catch (error) {
+      directory.release(id);
+      throw error;
+    }
+  }
+
+  private async buildClaimed(id: string, scenario: string, params: Readonly<Record<string, number>>): Promise<Room> {
     const seed = this.opts.seed ?? 1;
     let built: RoomSimulationBuild;
     try {

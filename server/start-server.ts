@@ -13,6 +13,7 @@ import { createServerAccess, logAccess, type AccessOptions } from './access/acce
 import { SystemClock } from './clock.ts';
 import type { SessionLimits } from './client-session.ts';
 import { GameServer } from './game-server.ts';
+import { FleetDirectory, FLEET_DEFAULTS } from './fleet/fleet-directory.ts';
 import { createHttpApi } from './http-api.ts';
 import { createHttpServer } from './http-server.ts';
 import { ConnectionPolicy, type ConnectionPolicyOptions } from './connection-policy.ts';
@@ -70,6 +71,20 @@ export interface StartServerOptions extends AccessOptions {
   tarpit?: TarpitOptions;
   /** Serve HTTPS and WSS with this certificate chain and private key (PEM). Default: plain HTTP and WS. */
   tls?: { cert: string | Buffer; key: string | Buffer };
+  /** Join a fleet of servers through a Redis directory (docs/deploy.md). Default: a single process. */
+  fleet?: FleetOptions;
+}
+
+/** Options of a fleet member. */
+export interface FleetOptions {
+  /** redis:// or rediss:// URL of the directory. */
+  redisUrl: string;
+  /** Where players reach this process (http:// or https://). Default: the address it listens on. */
+  publicUrl?: string;
+  /** Seconds after which a silent member and its rooms leave the directory. Default 10. */
+  ttlSeconds?: number;
+  /** Key prefix (several fleets may share one Redis). Default `taos:`. */
+  prefix?: string;
 }
 
 /** A listening server. */
@@ -84,6 +99,8 @@ export interface RunningServer {
   readonly logger: Logger;
   /** Who may open a WebSocket (per-address counts, back-off). */
   readonly policy: ConnectionPolicy;
+  /** This process's membership of the fleet, when started with one. */
+  readonly fleet: FleetDirectory | null;
   /** Shuts down: clients get a bye with `reason`, rooms stop, recordings end, sockets close, logs flush. Idempotent. */
   close(reason?: string): Promise<void>;
 }
@@ -122,6 +139,9 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   if (opts.tls) checkTls(opts.tls);
   const policy = new ConnectionPolicy(clock, { maxSockets: opts.maxConnections ?? 256, ...opts.connectionPolicy });
   const tarpit = new Tarpit(clock, opts.tarpit);
+  const fleet = opts.fleet
+    ? new FleetDirectory({ redisUrl: opts.fleet.redisUrl, ttlMs: (opts.fleet.ttlSeconds ?? FLEET_DEFAULTS.ttlSeconds) * 1000, prefix: opts.fleet.prefix ?? FLEET_DEFAULTS.prefix, clock, logger })
+    : null;
 
   const game = await GameServer.create({
     factory: createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null, hashEveryTicks: opts.recordHashEveryTicks }),
@@ -140,11 +160,12 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     resumeGraceMs: opts.resumeGraceMs,
     seats: access.seats,
     requireSeat: access.requireSeat,
+    directory: fleet ?? undefined,
   });
 
   const staticFiles = createStaticHandler(opts.clientDir ?? DEFAULT_CLIENT_DIR);
   const http = createHttpServer(
-    createHttpApi({ game, scenarios, metrics, logger, access, staticFiles }),
+    createHttpApi({ game, scenarios, metrics, logger, access, staticFiles, fleet: fleet ?? undefined }),
     (error) => logger.error({ err: error }, 'HTTP request failed'),
     opts.tls,
   );
@@ -181,6 +202,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   } catch (error) {
     await game.close('failed to start');
     await gateway.close(0);
+    await fleet?.close();
     const e = error as NodeJS.ErrnoException;
     throw new Error(e.code === 'EADDRINUSE' ? `port ${port} on ${host} is already in use (pick another with --port)` : `cannot listen on ${host}:${port}: ${e.message}`, { cause: error });
   }
@@ -193,6 +215,13 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   const wsUrl = `${secure ? 'wss' : 'ws'}://${shownHost}:${address.port}/`;
   logger.info({ url, scenario: scenarioName, snapshotRateHz: game.snapshotRateHz, recordDir: opts.recordDir ?? null, trustProxy: opts.trustProxy ?? false }, 'server listening');
   logAccess(logger, host, access);
+  if (fleet) {
+    const publicUrl = opts.fleet?.publicUrl ?? url;
+    if (opts.fleet?.publicUrl === undefined && (host === '0.0.0.0' || host === '::')) logger.warn({ publicUrl }, 'no --public-url: other servers of the fleet send players to this loopback address');
+    const maxRooms = opts.maxRooms ?? 6;
+    await fleet.start(publicUrl, () => ({ capacity: { rooms: maxRooms, connections: game.maxConnections }, players: game.sessionCount(), rooms: game.listRooms() }));
+    logger.info({ member: fleet.id, publicUrl: fleet.url, ttlSeconds: (opts.fleet?.ttlSeconds ?? FLEET_DEFAULTS.ttlSeconds) }, 'joined the fleet');
+  }
 
   let closing: Promise<void> | null = null;
   return {
@@ -203,9 +232,11 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     game,
     logger,
     policy,
+    fleet,
     close(reason = 'server shutting down') {
       closing ??= (async () => {
         await game.close(reason);
+        await fleet?.close();
         await gateway.close(1000);
         const stopped = new Promise<void>((done) => gate.close(() => done()));
         http.close(() => undefined); // stops its connection checks (it never listened itself, so it reports that)

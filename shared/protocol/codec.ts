@@ -140,6 +140,6 @@ export function encodeServerMessage(m: ServerMessage): Uint8Array {
     case 'error':
       return packr.pack([ServerOpcode.Error, m.code, m.message]);
     case 'bye':
-      return packr.pack([ServerOpcode.Bye, m.reason, m.message]);
+      return packr.pack(m.url === undefined ? [ServerOpcode.Bye, m.reason, m.message] : [ServerOpcode.Bye, m.reason, m.message, m.url]);
   }
 }

@@ -4,8 +4,9 @@
 /**
  * Bumped on any incompatible change to a message or the snapshot bit layout; hello and welcome must agree.
  * 2: hello's optional options map (seat and resume tokens); the welcome's resume fields; seat/resume codes.
+ * 3: the bye reason `room-moved` (and error code) with the hosting server's URL as the bye's fourth element.
  */
-export const PROTOCOL_VERSION = 2;
+export const PROTOCOL_VERSION = 3;
 
 /** Opcodes of messages a client sends to the server (1–15). */
 export const ClientOpcode = {
@@ -53,6 +54,8 @@ export const ErrorCode = {
   SeatRefused: 'seat-refused',
   /** The hello's resume token is unknown, already used or past its grace window: the client joins as a new player. */
   ResumeRefused: 'resume-refused',
+  /** The room is hosted by another server of the fleet; the bye that follows carries its URL. */
+  RoomMoved: 'room-moved',
   Internal: 'internal',
 } as const;
 export type ErrorCode = (typeof ErrorCode)[keyof typeof ErrorCode];
@@ -73,6 +76,8 @@ export const ByeReason = {
   SeatRefused: 'seat-refused',
   /** Another connection resumed this player with its resume token; this one is no longer in the room. */
   Replaced: 'replaced',
+  /** The room is hosted by another server of the fleet: the bye's `url` says where (the client connects there). */
+  RoomMoved: 'room-moved',
   ClientBye: 'client-bye',
 } as const;
 export type ByeReason = (typeof ByeReason)[keyof typeof ByeReason];
