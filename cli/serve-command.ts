@@ -8,6 +8,7 @@ import { ADMIN_TOKEN_ENV, checkAdminTokenText } from '../server/access/admin-aut
 import { parseAllowedOrigins } from '../server/access/origin-policy.ts';
 import { JOIN_SECRET_ENV, MIN_JOIN_SECRET_LENGTH } from '../server/access/seat-tokens.ts';
 import type { ConnectionPolicyOptions } from '../server/connection-policy.ts';
+import { AGONES_ENV, agonesSidecarPresent } from '../server/fleet/agones-lifecycle.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import { runServe, type ServeOptions } from './serve.ts';
 import type { ParsedArgs } from './args.ts';
@@ -96,6 +97,15 @@ function accessOptions(args: ParsedArgs): Pick<ServeOptions, 'allowedOrigins' | 
   };
 }
 
+/** The Agones flags: on with --agones or when the sidecar's environment is set; undefined otherwise. */
+function agonesOptions(args: ParsedArgs): ServeOptions['agones'] {
+  if (!args.flag('agones') && !agonesSidecarPresent()) {
+    for (const flag of ['agones-single-session', 'agones-drain']) if (args.has(flag)) throw new UsageError(`--${flag} needs --agones (or the Agones sidecar's ${AGONES_ENV.join('/')})`);
+    return undefined;
+  }
+  return { singleSession: args.flag('agones-single-session'), drainSeconds: args.has('agones-drain') ? args.number('agones-drain') : undefined };
+}
+
 async function run(args: ParsedArgs, io: CliIo): Promise<number> {
   const scenario = args.string('scenario') ?? DEFAULT_SCENARIO;
   const def = scenarioNamed(scenario);
@@ -129,6 +139,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
       clientDir: args.string('client-dir'),
       logLevel,
       fleet: fleetOptions(args),
+      agones: agonesOptions(args),
       ...accessOptions(args),
     },
     io,
@@ -175,6 +186,9 @@ export const serveCommand: CommandSpec = {
     { name: 'public-url', kind: 'string', valueName: 'URL', description: 'with --redis: where players reach this server (http:// or https://); default the listening address' },
     { name: 'fleet-ttl', kind: 'int', valueName: 'SECONDS', description: 'with --redis: a silent server and its rooms leave the directory after this long; default 10', min: 1, max: 3600 },
     { name: 'fleet-prefix', kind: 'string', valueName: 'PREFIX', description: 'with --redis: prefix of every directory key (one Redis, several fleets); default taos:' },
+    { name: 'agones', kind: 'boolean', description: `run as an Agones GameServer through the SDK sidecar (on by itself when ${AGONES_ENV[0]} is set)` },
+    { name: 'agones-single-session', kind: 'boolean', description: 'with Agones: Allocate when the first player joins, Shutdown once the session is over' },
+    { name: 'agones-drain', kind: 'int', valueName: 'SECONDS', description: 'with Agones: how long a finished session stays idle before Shutdown; default 5', min: 0, max: 3600 },
     { name: 'resume-grace', kind: 'int', valueName: 'SECONDS', description: 'how long a dropped player is held for a reconnect (0: off); default 30', min: 0, max: 3600 },
   ],
   run,

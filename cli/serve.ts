@@ -31,16 +31,18 @@ export async function runServe(opts: ServeOptions, io: CliIo): Promise<number> {
   const removeLastResort = installLastResort({ logger, metrics: server.game.metrics });
   io.stdout(`taos-physics serving ${what} at ${server.url} (WebSocket ${server.wsUrl}); Ctrl+C stops\n`);
   return new Promise<number>((resolve) => {
-    const { uninstall } = installShutdown(server, {
-      logger,
-      source: opts.signals,
-      exit: (code) => {
-        uninstall();
-        removeLastResort();
-        resolve(code);
-        // Nothing should hold the event loop after a clean shutdown; if something does, do not hang forever.
-        setTimeout(() => process.exit(code), 3000).unref();
-      },
-    });
+    let done = false;
+    const exit = (code: number): void => {
+      if (done) return;
+      done = true;
+      uninstall();
+      removeLastResort();
+      resolve(code);
+      // Nothing should hold the event loop after a clean shutdown; if something does, do not hang forever.
+      setTimeout(() => process.exit(code), 3000).unref();
+    };
+    const { uninstall } = installShutdown(server, { logger, source: opts.signals, exit });
+    // A single-session server under Agones closes itself once its session is over.
+    void server.whenClosed().then(() => exit(0));
   });
 }

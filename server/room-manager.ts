@@ -86,6 +86,7 @@ export class RoomManager {
   private readonly rooms = new Map<string, Room>();
   private readonly creating = new Map<string, Promise<Room>>();
   private readonly emptyTimers = new Map<string, TimerHandle>();
+  private readonly openedListeners = new Set<(room: Room) => void>();
   private nextRoomNumber = 1;
   private closing = false;
 
@@ -96,6 +97,12 @@ export class RoomManager {
   /** Creates the default room. */
   async start(): Promise<Room> {
     return this.create(DEFAULT_ROOM_ID, this.opts.defaultScenario, this.opts.defaultParams ?? {});
+  }
+
+  /** Calls `fn` with every room that opens from now on (the Agones lifecycle watches players through it). */
+  onRoomOpened(fn: (room: Room) => void): () => void {
+    this.openedListeners.add(fn);
+    return () => this.openedListeners.delete(fn);
   }
 
   /** The room with this id, if open. */
@@ -242,6 +249,7 @@ export class RoomManager {
     }
     room.start();
     this.opts.logger.info({ room: id, scenario, params: built.params, recording: recorder !== null }, 'room opened');
+    for (const fn of this.openedListeners) fn(room);
     return room;
   }
 

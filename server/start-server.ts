@@ -13,6 +13,7 @@ import { createServerAccess, logAccess, type AccessOptions } from './access/acce
 import { SystemClock } from './clock.ts';
 import type { SessionLimits } from './client-session.ts';
 import { GameServer } from './game-server.ts';
+import { AgonesLifecycle, createAgonesClient, type AgonesClient } from './fleet/agones-lifecycle.ts';
 import { FleetDirectory, FLEET_DEFAULTS } from './fleet/fleet-directory.ts';
 import { createHttpApi } from './http-api.ts';
 import { createHttpServer } from './http-server.ts';
@@ -73,6 +74,20 @@ export interface StartServerOptions extends AccessOptions {
   tls?: { cert: string | Buffer; key: string | Buffer };
   /** Join a fleet of servers through a Redis directory (docs/deploy.md). Default: a single process. */
   fleet?: FleetOptions;
+  /** Run as an Agones GameServer through the SDK sidecar (docs/deploy.md). Default: not. */
+  agones?: AgonesServerOptions;
+}
+
+/** Options of the Agones lifecycle. */
+export interface AgonesServerOptions {
+  /** Allocate when the first player joins; Shutdown once the session is over. Default false. */
+  singleSession?: boolean;
+  /** Seconds a finished session stays idle before Shutdown. Default 5. */
+  drainSeconds?: number;
+  /** Milliseconds between Health pings. Default 2000. */
+  healthIntervalMs?: number;
+  /** The SDK client (tests); default the official SDK on localhost:AGONES_SDK_GRPC_PORT. */
+  client?: AgonesClient;
 }
 
 /** Options of a fleet member. */
@@ -101,6 +116,10 @@ export interface RunningServer {
   readonly policy: ConnectionPolicy;
   /** This process's membership of the fleet, when started with one. */
   readonly fleet: FleetDirectory | null;
+  /** The Agones lifecycle, when run under Agones. */
+  readonly agones: AgonesLifecycle | null;
+  /** Resolves once the server has closed (by close(), or by itself when a single-session server's session is over). */
+  whenClosed(): Promise<void>;
   /** Shuts down: clients get a bye with `reason`, rooms stop, recordings end, sockets close, logs flush. Idempotent. */
   close(reason?: string): Promise<void>;
 }
@@ -224,7 +243,10 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   }
 
   let closing: Promise<void> | null = null;
-  return {
+  let agones: AgonesLifecycle | null = null;
+  let markClosed: () => void = () => undefined;
+  const closed = new Promise<void>((resolve) => (markClosed = resolve));
+  const running: RunningServer = {
     url,
     wsUrl,
     port: address.port,
@@ -233,9 +255,14 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     logger,
     policy,
     fleet,
+    get agones() {
+      return agones;
+    },
+    whenClosed: () => closed,
     close(reason = 'server shutting down') {
       closing ??= (async () => {
         await game.close(reason);
+        await agones?.shutdown(reason);
         await fleet?.close();
         await gateway.close(1000);
         const stopped = new Promise<void>((done) => gate.close(() => done()));
@@ -244,8 +271,30 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
         await stopped;
         logger.info({ reason }, 'server stopped');
         await flushLogger(logger);
+        markClosed();
       })();
       return closing;
     },
   };
+  if (opts.agones) {
+    const lifecycle = new AgonesLifecycle({
+      client: opts.agones.client ?? (await createAgonesClient()),
+      rooms: game.rooms,
+      clock,
+      logger,
+      singleSession: opts.agones.singleSession,
+      drainMs: (opts.agones.drainSeconds ?? 5) * 1000,
+      healthIntervalMs: opts.agones.healthIntervalMs,
+      maxPlayers: game.maxConnections,
+      onSessionOver: (reason) => void running.close(reason),
+    });
+    try {
+      await lifecycle.start();
+    } catch (error) {
+      await running.close('cannot start under Agones');
+      throw error;
+    }
+    agones = lifecycle;
+  }
+  return running;
 }

@@ -15,6 +15,8 @@ export interface ServeProcess {
   readonly pid: number;
   /** Its stderr so far (JSON log lines). */
   log(): string;
+  /** Resolves with the exit code once the process exits by itself; rejects after timeoutMs. */
+  exited(timeoutMs: number): Promise<number | null>;
   /** Sends `signal` by PID and resolves when it exited (SIGKILL after 10 s if it has not). */
   stop(signal?: 'SIGTERM' | 'SIGKILL'): Promise<void>;
 }
@@ -28,7 +30,7 @@ export async function startServeProcess(args: readonly string[], env: NodeJS.Pro
   let stdout = '';
   let stderr = '';
   child.stderr?.on('data', (d: Buffer) => (stderr = (stderr + d.toString('utf8')).slice(-200_000)));
-  const exited = new Promise<void>((done) => child.once('exit', () => done()));
+  const exited = new Promise<number | null>((done) => child.once('exit', (code) => done(code)));
   const url = await new Promise<string>((resolveUrl, reject) => {
     const timer = setTimeout(() => reject(new Error(`serve did not start within 30 s: ${stderr.slice(-1000)}`)), 30_000);
     child.stdout?.on('data', (d: Buffer) => {
@@ -50,6 +52,14 @@ export async function startServeProcess(args: readonly string[], env: NodeJS.Pro
     wsUrl: url.replace(/^http/, 'ws'),
     pid,
     log: () => stderr,
+    exited: (timeoutMs) =>
+      new Promise<number | null>((resolveExit, reject) => {
+        const timer = setTimeout(() => reject(new Error(`serve did not exit within ${timeoutMs} ms`)), timeoutMs);
+        void exited.then((code) => {
+          clearTimeout(timer);
+          resolveExit(code);
+        });
+      }),
     async stop(signal = 'SIGTERM') {
       if (child.exitCode !== null || child.signalCode !== null) return;
       process.kill(pid, signal);
