@@ -13,8 +13,9 @@ import { createServerAccess, logAccess, type AccessOptions } from './access/acce
 import { SystemClock } from './clock.ts';
 import type { SessionLimits } from './client-session.ts';
 import { GameServer } from './game-server.ts';
-import { AgonesLifecycle, createAgonesClient, type AgonesClient } from './fleet/agones-lifecycle.ts';
-import { FleetDirectory, FLEET_DEFAULTS } from './fleet/fleet-directory.ts';
+import type { AgonesLifecycle } from './fleet/agones-lifecycle.ts';
+import type { FleetDirectory } from './fleet/fleet-directory.ts';
+import { createFleetDirectory, joinFleet, type AgonesServerOptions, type FleetOptions } from './fleet/fleet-setup.ts';
 import { createHttpApi } from './http-api.ts';
 import { createHttpServer } from './http-server.ts';
 import { ConnectionPolicy, type ConnectionPolicyOptions } from './connection-policy.ts';
@@ -78,30 +79,6 @@ export interface StartServerOptions extends AccessOptions {
   agones?: AgonesServerOptions;
 }
 
-/** Options of the Agones lifecycle. */
-export interface AgonesServerOptions {
-  /** Allocate when the first player joins; Shutdown once the session is over. Default false. */
-  singleSession?: boolean;
-  /** Seconds a finished session stays idle before Shutdown. Default 5. */
-  drainSeconds?: number;
-  /** Milliseconds between Health pings. Default 2000. */
-  healthIntervalMs?: number;
-  /** The SDK client (tests); default the official SDK on localhost:AGONES_SDK_GRPC_PORT. */
-  client?: AgonesClient;
-}
-
-/** Options of a fleet member. */
-export interface FleetOptions {
-  /** redis:// or rediss:// URL of the directory. */
-  redisUrl: string;
-  /** Where players reach this process (http:// or https://). Default: the address it listens on. */
-  publicUrl?: string;
-  /** Seconds after which a silent member and its rooms leave the directory. Default 10. */
-  ttlSeconds?: number;
-  /** Key prefix (several fleets may share one Redis). Default `taos:`. */
-  prefix?: string;
-}
-
 /** A listening server. */
 export interface RunningServer {
   /** http://host:port/ */
@@ -158,9 +135,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   if (opts.tls) checkTls(opts.tls);
   const policy = new ConnectionPolicy(clock, { maxSockets: opts.maxConnections ?? 256, ...opts.connectionPolicy });
   const tarpit = new Tarpit(clock, opts.tarpit);
-  const fleet = opts.fleet
-    ? new FleetDirectory({ redisUrl: opts.fleet.redisUrl, ttlMs: (opts.fleet.ttlSeconds ?? FLEET_DEFAULTS.ttlSeconds) * 1000, prefix: opts.fleet.prefix ?? FLEET_DEFAULTS.prefix, clock, logger })
-    : null;
+  const fleet = createFleetDirectory(opts.fleet, clock, logger);
 
   const game = await GameServer.create({
     factory: createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null, hashEveryTicks: opts.recordHashEveryTicks }),
@@ -234,14 +209,6 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   const wsUrl = `${secure ? 'wss' : 'ws'}://${shownHost}:${address.port}/`;
   logger.info({ url, scenario: scenarioName, snapshotRateHz: game.snapshotRateHz, recordDir: opts.recordDir ?? null, trustProxy: opts.trustProxy ?? false }, 'server listening');
   logAccess(logger, host, access);
-  if (fleet) {
-    const publicUrl = opts.fleet?.publicUrl ?? url;
-    if (opts.fleet?.publicUrl === undefined && (host === '0.0.0.0' || host === '::')) logger.warn({ publicUrl }, 'no --public-url: other servers of the fleet send players to this loopback address');
-    const maxRooms = opts.maxRooms ?? 6;
-    await fleet.start(publicUrl, () => ({ capacity: { rooms: maxRooms, connections: game.maxConnections }, players: game.sessionCount(), rooms: game.listRooms() }));
-    logger.info({ member: fleet.id, publicUrl: fleet.url, ttlSeconds: (opts.fleet?.ttlSeconds ?? FLEET_DEFAULTS.ttlSeconds) }, 'joined the fleet');
-  }
-
   let closing: Promise<void> | null = null;
   let agones: AgonesLifecycle | null = null;
   let markClosed: () => void = () => undefined;
@@ -276,25 +243,16 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
       return closing;
     },
   };
-  if (opts.agones) {
-    const lifecycle = new AgonesLifecycle({
-      client: opts.agones.client ?? (await createAgonesClient()),
-      rooms: game.rooms,
-      clock,
-      logger,
-      singleSession: opts.agones.singleSession,
-      drainMs: (opts.agones.drainSeconds ?? 5) * 1000,
-      healthIntervalMs: opts.agones.healthIntervalMs,
-      maxPlayers: game.maxConnections,
-      onSessionOver: (reason) => void running.close(reason),
-    });
-    try {
-      await lifecycle.start();
-    } catch (error) {
-      await running.close('cannot start under Agones');
-      throw error;
-    }
-    agones = lifecycle;
+  try {
+    agones = await joinFleet(
+      { game, clock, logger, listenUrl: url, host, secure, maxRooms: opts.maxRooms ?? 6, closeServer: (reason) => void running.close(reason) },
+      fleet,
+      opts.fleet,
+      opts.agones,
+    );
+  } catch (error) {
+    await running.close('cannot start under Agones');
+    throw error;
   }
   return running;
 }

@@ -15,7 +15,8 @@ export interface AgonesClient {
   shutdown(): Promise<unknown>;
   health(errorCallback?: (error: Error) => void): void;
   setLabel(key: string, value: string): Promise<unknown>;
-  watchGameServer(callback: (gameServer: { status?: { state?: string } }) => void, errorCallback?: (error: Error) => void): void;
+  getGameServer(): Promise<AgonesGameServer>;
+  watchGameServer(callback: (gameServer: AgonesGameServer) => void, errorCallback?: (error: Error) => void): void;
   close(): void;
   beta: {
     setCounterCount(key: string, amount: number): Promise<void>;
@@ -23,6 +24,23 @@ export interface AgonesClient {
     appendListValue(key: string, value: string): Promise<void>;
     deleteListValue(key: string, value: string): Promise<void>;
   };
+}
+
+/** What this lifecycle reads of a GameServer (the SDK's toObject() shape). */
+export interface AgonesGameServer {
+  status?: { state?: string; address?: string; portsList?: Array<{ name?: string; port?: number }> };
+}
+
+/**
+ * Where players reach a GameServer: its node's address and its first port (Agones maps the container port to it), as
+ * an http(s) base URL; null while Agones has not assigned them.
+ */
+export function gameServerUrl(gs: AgonesGameServer, secure: boolean): string | null {
+  const address = gs.status?.address ?? '';
+  const port = gs.status?.portsList?.find((p) => typeof p.port === 'number' && p.port > 0)?.port;
+  if (address === '' || port === undefined) return null;
+  const host = address.includes(':') ? `[${address}]` : address;
+  return `${secure ? 'https' : 'http'}://${host}:${port}/`;
 }
 
 /** The rooms the lifecycle watches (RoomManager). */
@@ -108,14 +126,36 @@ export class AgonesLifecycle {
     this.opts.logger.warn({ err: errorText(error) }, `agones: ${kind} failed`);
   }
 
-  /** Connects to the sidecar (the SDK waits up to 30 s), marks the server Ready and starts Health and publishing. */
+  private sidecarError(error: unknown): Error {
+    return new Error(`cannot reach the Agones SDK sidecar on localhost:${process.env.AGONES_SDK_GRPC_PORT ?? 9357}: ${errorText(error)}`, { cause: error });
+  }
+
+  /** Connects to the sidecar (the SDK waits up to 30 s); throws a clear Error when it does not answer. */
+  async connect(): Promise<void> {
+    try {
+      await this.opts.client.connect();
+    } catch (error) {
+      throw this.sidecarError(error);
+    }
+  }
+
+  /** Where Agones says players reach this GameServer (see gameServerUrl), or null. */
+  async publicUrl(secure: boolean): Promise<string | null> {
+    try {
+      return gameServerUrl(await this.opts.client.getGameServer(), secure);
+    } catch (error) {
+      this.warnOnce('GetGameServer', error);
+      return null;
+    }
+  }
+
+  /** Marks the server Ready (after connect) and starts Health, the watch and publishing. */
   async start(): Promise<void> {
     const { client } = this.opts;
     try {
-      await client.connect();
       await client.ready();
     } catch (error) {
-      throw new Error(`cannot reach the Agones SDK sidecar on localhost:${process.env.AGONES_SDK_GRPC_PORT ?? 9357}: ${errorText(error)}`, { cause: error });
+      throw this.sidecarError(error);
     }
     this.opts.logger.info({ singleSession: this.opts.singleSession ?? false }, 'agones: Ready');
     const beat = (): void => {
