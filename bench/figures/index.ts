@@ -79,6 +79,14 @@ export const FIGURES: readonly FigureSpec[] = Object.freeze([
     timeLimitMs: (quick: boolean) => (quick ? min(3) : min(3)),
     module: 'figures/startup.ts',
   },
+  {
+    name: 'fleet-redirect',
+    title: 'fleet redirect',
+    detailKey: 'fleetRedirect',
+    headlineKeys: ['redirectWelcomeMs'],
+    timeLimitMs: (quick: boolean) => (quick ? min(2) : min(3)),
+    module: 'figures/fleet-redirect.ts',
+  },
 ]);
 
 /** Every figure name. */
@@ -108,4 +116,5 @@ export const HEADLINE_KEYS: readonly string[] = [
   'checkpointSaveMs1000',
   'checkpointRestoreMs1000',
   'startupMs',
+  'redirectWelcomeMs',
 ];

@@ -36,7 +36,7 @@ export interface FleetDirectoryOptions {
   prefix: string;
   clock: Clock;
   logger: Logger;
-  /** Longest wait for one Redis command (ms). Default 1000. */
+  /** Longest wait for one Redis command (ms). Default 2000. */
   commandTimeoutMs?: number;
 }
 
@@ -88,7 +88,7 @@ export class FleetDirectory implements RoomDirectory {
 
   constructor(opts: FleetDirectoryOptions) {
     this.opts = opts;
-    const timeoutMs = opts.commandTimeoutMs ?? 1000;
+    const timeoutMs = opts.commandTimeoutMs ?? 2000;
     this.redis = new Redis(opts.redisUrl, {
       lazyConnect: true,
       // Commands fail at once while disconnected (nothing queues up behind an outage) and never wait past the timeout.
@@ -226,15 +226,18 @@ export class FleetDirectory implements RoomDirectory {
   }
 
   async claim(id: string): Promise<void> {
-    let owner: string | null;
+    let owner: string | null = null;
     try {
-      if ((await this.redis.set(this.key('room', id), this.id, 'PX', this.ttlMs, 'NX')) === 'OK') owner = this.id;
-      else owner = await this.redis.get(this.key('room', id));
+      // Twice at most: a claim that lapses between our SET and GET leaves the id free for a second SET.
+      for (let attempt = 0; attempt < 2 && owner === null; attempt++) {
+        if ((await this.redis.set(this.key('room', id), this.id, 'PX', this.ttlMs, 'NX')) === 'OK') owner = this.id;
+        else owner = await this.redis.get(this.key('room', id));
+      }
     } catch (error) {
       throw this.unavailable(id, error);
     }
-    if (owner === this.id || owner === null) {
-      // null: the other claim lapsed between SET and GET; ours is taken on the next heartbeat's refresh.
+    if (owner === null) throw new RoomError(ErrorCode.ServerFull, `room ${JSON.stringify(id)} is being opened and closed elsewhere in the fleet; try again`);
+    if (owner === this.id) {
       this.claims.add(id);
       return;
     }
