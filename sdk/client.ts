@@ -114,12 +114,12 @@ export interface NetClientStats {
 /** Room moves followed in a row (without a welcome between them) before the client gives up. */
 const MAX_ROOM_MOVES = 3;
 
-/** Whether a room-moved bye's URL is one the client may follow (a WebSocket URL). */
-function isMoveTarget(url: string | undefined): url is string {
+/** Whether a room-moved bye's URL is one the client may follow: ws://, wss://, or the scheme it is connected with. */
+function isMoveTarget(url: string | undefined, current: string): url is string {
   if (url === undefined) return false;
   try {
-    const u = new URL(url);
-    return u.protocol === 'ws:' || u.protocol === 'wss:';
+    const protocol = new URL(url).protocol;
+    return protocol === 'ws:' || protocol === 'wss:' || protocol === new URL(current).protocol;
   } catch {
     return false;
   }
@@ -420,7 +420,7 @@ export class NetClient {
 
   /** Connects at once to the server a room-moved bye named (a bounded number of times in a row). */
   private followMove(url: string | undefined, why: string): void {
-    if (!isMoveTarget(url)) {
+    if (!isMoveTarget(url, this.urlValue)) {
       this.finish({ reason: ByeReason.RoomMoved, detail: `${why} (no usable ws:// or wss:// URL to follow)` });
       return;
     }

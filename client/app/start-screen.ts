@@ -8,6 +8,8 @@ export interface RoomSummary {
   clients: number;
   tick: number;
   bodies: number;
+  /** With a fleet of servers: the one that hosts the room (joining it through this page is redirected there). */
+  server?: { url: string };
 }
 
 /** A scenario as GET /api/scenarios describes it. */
@@ -55,6 +57,15 @@ function isRoomSummary(v: unknown): v is RoomSummary {
   return !!r && typeof r.id === 'string' && typeof r.scenario === 'string' && typeof r.clients === 'number';
 }
 
+/** host:port of a server URL, for people (the URL itself when it does not parse). */
+function hostOf(url: string): string {
+  try {
+    return new URL(url).host;
+  } catch {
+    return url;
+  }
+}
+
 function isScenarioSummary(v: unknown): v is ScenarioSummary {
   const s = v as ScenarioSummary;
   return !!s && typeof s.name === 'string' && typeof s.description === 'string';
@@ -89,7 +100,8 @@ export function showStartScreen(root: HTMLElement, lobby: { rooms: RoomSummary[]
     for (const room of lobby.rooms) {
       const li = el('li', '');
       const desc = lobby.scenarios.get(room.scenario)?.description ?? '';
-      li.append(el('span', 'name', `${room.id} · ${room.scenario}`), el('span', 'desc', desc), el('span', 'meta', `${room.clients} connected · ${room.bodies} bodies · tick ${room.tick}`));
+      const host = typeof room.server?.url === 'string' ? ` · on ${hostOf(room.server.url)}` : '';
+      li.append(el('span', 'name', `${room.id} · ${room.scenario}`), el('span', 'desc', desc), el('span', 'meta', `${room.clients} connected · ${room.bodies} bodies · tick ${room.tick}${host}`));
       const b = el('button', '', 'Join');
       b.type = 'button';
       b.dataset.room = room.id;
