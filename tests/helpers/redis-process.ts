@@ -62,11 +62,15 @@ export interface RedisServer {
   stop(): Promise<void>;
 }
 
-/** Starts redis-server on a free loopback port without persistence and waits until it answers. */
-export async function startRedisServer(): Promise<RedisServer> {
+/**
+ * Starts redis-server without persistence on `opts.port` (default: a free loopback port) and waits until it answers.
+ * `debugCommand` allows DEBUG (e.g. DEBUG SLEEP to play a stalled Redis).
+ */
+export async function startRedisServer(opts: { port?: number; debugCommand?: boolean } = {}): Promise<RedisServer> {
   for (let attempt = 0; ; attempt++) {
-    const port = await freePort();
-    const child: ChildProcess = spawn(REDIS_SERVER_PATH, ['--port', String(port), '--bind', '127.0.0.1', '--save', '', '--appendonly', 'no', '--protected-mode', 'yes'], {
+    const port = opts.port ?? (await freePort());
+    const extra = opts.debugCommand ? ['--enable-debug-command', 'yes'] : [];
+    const child: ChildProcess = spawn(REDIS_SERVER_PATH, ['--port', String(port), '--bind', '127.0.0.1', '--save', '', '--appendonly', 'no', '--protected-mode', 'yes', ...extra], {
       stdio: ['ignore', 'pipe', 'pipe'],
     });
     let output = '';
@@ -85,7 +89,7 @@ export async function startRedisServer(): Promise<RedisServer> {
       if (child.exitCode === null) child.kill('SIGKILL');
       await exited;
       // Another process may have taken the port between our probe and redis binding it: try another once or twice.
-      if (attempt < 2 && /Address already in use/.test(output)) continue;
+      if (attempt < 2 && opts.port === undefined && /Address already in use/.test(output)) continue;
       throw error;
     }
     const pid = child.pid ?? 0;
