@@ -6,7 +6,7 @@
 import { Unpackr } from 'msgpackr';
 import { join, resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
-import { decodeClientMessage, encodeClientMessage, type ClientMessage } from '../shared/protocol/index.ts';
+import { decodeClientMessage, encodeClientMessage, PROTOCOL_VERSION, type ClientMessage } from '../shared/protocol/index.ts';
 import { NEUTRAL_INPUT } from '../shared/sim/input.ts';
 import { Prng } from '../shared/sim/prng.ts';
 import { hostileFrame } from '../tests/helpers/hostile-frames.ts';
@@ -35,7 +35,7 @@ const MIX: ReadonlyArray<{ name: string; message: ClientMessage; perSecond: numb
   { name: 'input x4', message: { type: 'input', firstTick: 123_456, commands: [walk, walk, { ...walk, buttons: 5 }, walk] }, perSecond: 60 },
   { name: 'ack', message: { type: 'ack', tick: 123_400 }, perSecond: 30 },
   { name: 'ping', message: { type: 'ping', clientTimeMs: 81_234.56789 }, perSecond: 1 },
-  { name: 'hello', message: { type: 'hello', version: 1, name: 'Ada Lovelace', room: 'default' }, perSecond: 0 },
+  { name: 'hello', message: { type: 'hello', version: PROTOCOL_VERSION, name: 'Ada Lovelace', room: 'default' }, perSecond: 0 },
 ];
 
 function timeNs(bytes: Uint8Array, fn: Decode): number {

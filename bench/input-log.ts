@@ -28,7 +28,7 @@ const hash = (t: number): string => ((t * 2654435761) >>> 0).toString(16).padSta
 const dir = await mkdtemp(join(tmpdir(), 'taos-log-bench-'));
 try {
   for (const players of playerCounts) {
-    const path = join(dir, `p${players}.tlog`);
+    const path = join(dir, `p${players}.taoslog`);
     const records = Array.from({ length: 600 }, (_, i) => tickRecord(i, players));
     let start = performance.now();
     const w = await LogWriter.create(path, { joltVersion: '1.1.0', scenario: 'bench', params: {}, seed: 1, tickRateHz: 60, hashEveryTicks: 1, checkpointEveryTicks: 0, createdBy: 'bench' });

@@ -86,7 +86,7 @@ function quantile(sorted: number[], q: number): number {
 
 // Every client comes from 127.0.0.1: lift the per-address connection caps.
 const server = await startServer({ port: 0, scenario: 'cubes-901', snapshotRateHz: snapshotHz, logger: silentLogger(), maxClients: 64, connectionPolicy: { maxSocketsPerAddress: Infinity, maxPendingPerAddress: Infinity } });
-const room = server.game.rooms.get('default')!;
+const room = server.game.rooms.local('default')!;
 const tickMs: number[] = [];
 const stepMs: number[] = [];
 let measuringTicks = false;

@@ -11,7 +11,7 @@ function summary(r: BotsReport): string {
     lines.push(
       `  ${b.name}: ${b.connected ? `player ${b.playerId}` : 'never joined'}, ${b.snapshots} snapshots, ${(b.bytesIn / 1024).toFixed(1)} KiB in, ` +
         `${(b.bytesOut / 1024).toFixed(1)} KiB out, rtt ${rtt}, missed input ticks ${b.missedInputTicks ?? '-'}` +
-        `${b.serverErrors ? `, ${b.serverErrors} server error(s)` : ''}${b.closedReason && b.closedReason !== 'client-closed' ? `, ended: ${b.closedReason}` : ''}`,
+        `${b.serverErrors ? `, ${b.serverErrors} server error(s)` : ''}${b.closedReason && b.closedReason !== 'client-closed' ? `, ended by the server: ${b.closedDetail ?? b.closedReason}` : ''}`,
     );
   }
   return `${lines.join('\n')}\n`;
@@ -40,7 +40,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
     else io.stdout(summary(report));
     const failed = report.bots.filter((b) => !b.connected || (b.closedReason !== null && b.closedReason !== 'client-closed'));
     if (failed.length > 0) {
-      io.stderr(`${failed.length} bot(s) could not join or were disconnected: ${failed.map((b) => `${b.name} (${b.closedReason ?? 'no welcome'})`).join(', ')}\n`);
+      io.stderr(`${failed.length} bot(s) could not join or were disconnected: ${failed.map((b) => `${b.name} (${b.closedDetail ?? b.closedReason ?? 'no welcome'})`).join(', ')}\n`);
       return ExitCode.Failed;
     }
     return ExitCode.Ok;

@@ -34,6 +34,8 @@ export interface BotReport {
   connected: boolean;
   /** How the client ended: 'client-closed' after a normal stop, else the server's reason. */
   closedReason: string | null;
+  /** The server's words for that ending (e.g. "room-full: room default is full (32 clients)"); null while open. */
+  closedDetail: string | null;
   snapshots: number;
   bytesIn: number;
   bytesOut: number;
@@ -81,6 +83,7 @@ export function startBots(opts: BotsOptions): BotsRun {
           playerId: b.client?.playerId ?? null,
           connected: b.connected,
           closedReason: b.client?.closed?.reason ?? null,
+          closedDetail: b.client?.closed?.detail ?? null,
           snapshots: s?.snapshots ?? 0,
           bytesIn: s?.bytesIn ?? 0,
           bytesOut: s?.bytesOut ?? 0,

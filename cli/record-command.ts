@@ -2,10 +2,11 @@
 // characters while every tick's inputs, hashes and periodic checkpoints are written to an input log.
 import { BotScript } from '../shared/sim/bots.ts';
 import { SessionLog } from '../server/log/session-log.ts';
+import { scenarioModuleHash } from '../server/scenario-module.ts';
 import type { ParsedArgs } from './args.ts';
 import { ExitCode, UsageError, type CliIo, type CommandSpec } from './command.ts';
 import { ProgressBar } from './progress.ts';
-import { createSimulation, parseSeed, scenarioNamed } from './scenario-setup.ts';
+import { createSimulation, parseSeed, scenarioFromArg } from './scenario-setup.ts';
 import { PROGRAM } from './usage.ts';
 
 /** Default checkpoint interval of recorded logs (ticks). */
@@ -14,7 +15,7 @@ export const DEFAULT_CHECKPOINT_EVERY = 600;
 const SETTLE_EVERY_TICKS = 60;
 
 async function run(args: ParsedArgs, io: CliIo): Promise<number> {
-  const def = scenarioNamed(args.string('scenario')!);
+  const def = await scenarioFromArg(args.string('scenario')!);
   const params = args.pairs('param');
   const seed = parseSeed(args.string('seed'));
   const ticks = args.number('ticks')!;
@@ -31,6 +32,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
         hashEveryTicks: args.number('hash-every', 1),
         checkpointEveryTicks: args.number('checkpoint-every', DEFAULT_CHECKPOINT_EVERY),
         createdBy: `${PROGRAM} record --bots ${botCount}`,
+        scenarioHash: await scenarioModuleHash(def),
         overwrite: args.flag('force'),
       });
     } catch (err) {
@@ -77,7 +79,7 @@ export const recordCommand: CommandSpec = {
     'A hash record follows every K-th tick (0: none) and a checkpoint every C-th tick (0: none); see docs/input-log.md.',
   positionals: [],
   flags: [
-    { name: 'scenario', kind: 'string', valueName: 'NAME', description: 'scenario to record', required: true },
+    { name: 'scenario', kind: 'string', valueName: 'NAME|FILE', description: 'scenario to record: a built-in name or a module file', required: true },
     { name: 'bots', kind: 'int', valueName: 'N', description: 'scripted bots (they join 10 ticks apart)', required: true, min: 0, max: 10_000 },
     { name: 'ticks', kind: 'int', valueName: 'T', description: 'ticks to record', required: true, min: 0, max: 100_000_000 },
     { name: 'out', kind: 'string', valueName: 'FILE', description: 'log file to create', required: true },

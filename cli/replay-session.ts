@@ -7,12 +7,26 @@ import type { Simulation } from '../shared/sim/simulation.ts';
 import { installedJoltVersion } from '../server/log/jolt-version.ts';
 import { LogCorruptError, type LogEntry, type LogHeader, type LogStatus } from '../server/log/log-format.ts';
 import { LogReader } from '../server/log/log-reader.ts';
+import { scenarioNames } from '../scenarios/index.ts';
+import { scenarioModuleHash, shortHash } from '../server/scenario-module.ts';
+import type { ScenarioDefinition } from '../shared/sim/scenario.ts';
 import { createSimulation, scenarioNamed } from './scenario-setup.ts';
+
+/** A log cannot be replayed with the scenario at hand (not built in, another name, another module version). */
+export class ScenarioVersionError extends Error {
+  override name = 'ScenarioVersionError';
+}
 
 /** What to replay and what to keep. */
 export interface ReplayOptions {
+  /** The scenario to replay with (a loaded module); default the built-in scenario the log names. */
+  scenario?: ScenarioDefinition;
+  /** Replay even when the scenario's module hash differs from the one the log was recorded with. */
+  force?: boolean;
   /** Stop once the simulation's tick counter reaches this (default: the whole log). */
   toTick?: number;
+  /** Start from the last recorded checkpoint at or before this tick counter instead of tick 0 (none: from 0). */
+  fromTick?: number;
   /** Keep the state hash at every tick counter 0…n (for verify). */
   collectHashes?: boolean;
   /** Called now and then with the fraction of the file read and the tick counter. */
@@ -57,27 +71,75 @@ export interface ReplayReport {
   corruption?: { recordIndex: number; byteOffset: number; reason: string };
   /** Set when the log was recorded with another jolt-physics version. */
   joltVersionNote?: string;
+  /** Set when --force replayed a log recorded with another version of the scenario's module. */
+  scenarioNote?: string;
   /** State hash at tick counter 0…ticks (collectHashes only). */
   hashes?: string[];
+  /** The tick counter the replay started at (a checkpoint's with fromTick, else 0). */
+  startTick: number;
+}
+
+/** The record index and tick of the last checkpoint at or before `fromTick` (null when there is none). */
+export async function findCheckpoint(file: string, fromTick: number): Promise<{ index: number; tick: number } | null> {
+  const reader = await LogReader.open(file);
+  let best: { index: number; tick: number } | null = null;
+  try {
+    for await (const e of reader.entries()) {
+      if (e.type === 'checkpoint' && e.tick <= fromTick) best = { index: e.index, tick: e.tick };
+      if (e.type === 'tick' && e.record.tick >= fromTick) break; // later checkpoints are past fromTick
+    }
+  } catch (err) {
+    if (!(err instanceof LogCorruptError)) throw err; // the replay itself reports the damage
+  } finally {
+    await reader.close();
+  }
+  return best;
+}
+
+/**
+ * The scenario a log replays with: the given module's (its name must be the log's, and its module hash too unless
+ * `force`), else the built-in the log names. A mismatch is a ScenarioVersionError saying what differs.
+ */
+export async function scenarioForLog(file: string, header: LogHeader, opts: Pick<ReplayOptions, 'scenario' | 'force'>): Promise<{ def: ScenarioDefinition; note: string | null }> {
+  let def = opts.scenario;
+  if (def === undefined) {
+    if (!scenarioNames().includes(header.scenario)) {
+      throw new ScenarioVersionError(`${file} was recorded with scenario "${header.scenario}", which is not built in: pass its module with --scenario ./path/to/game.ts`);
+    }
+    def = scenarioNamed(header.scenario);
+  } else if (def.name !== header.scenario) {
+    throw new ScenarioVersionError(`${file} was recorded with scenario "${header.scenario}", but the module given with --scenario defines "${def.name}"`);
+  }
+  const hash = await scenarioModuleHash(def);
+  if (hash === header.scenarioHash || header.scenarioHash === '') return { def, note: null };
+  const what = `${file} was recorded with another version of scenario "${header.scenario}" (module hash ${shortHash(header.scenarioHash)} in the log, ${shortHash(hash)} now)`;
+  if (!opts.force) throw new ScenarioVersionError(`${what}: its hashes will likely differ; pass --force to replay it anyway`);
+  return { def, note: `${what}: replaying anyway (--force), hashes may differ` };
 }
 
 /** Replays one log file. Throws for an unreadable file or header (missing, not a log, unknown scenario). */
 export async function replayLog(file: string, opts: ReplayOptions = {}): Promise<ReplayReport> {
   const fileBytes = (await stat(file)).size;
+  if (opts.fromTick !== undefined && opts.collectHashes) throw new Error('replayLog: fromTick and collectHashes do not go together');
+  const start = opts.fromTick !== undefined ? await findCheckpoint(file, opts.fromTick) : null;
   const reader = await LogReader.open(file);
   let sim: Simulation | null = null;
   try {
     const header = reader.header;
+    const { def, note } = await scenarioForLog(file, header, opts);
     try {
-      sim = await createSimulation(scenarioNamed(header.scenario), header.params, header.seed);
+      sim = await createSimulation(def, header.params, header.seed);
     } catch (err) {
       // The log, not the command line, names the scenario and parameters: a failure here is the log's problem.
       throw new Error(`${file} cannot be replayed by this build: ${(err as Error).message}`, { cause: err });
     }
     const s: Simulation = sim;
-    const report: ReplayReport = { file, header, status: 'ok', log: 'complete', ticks: 0, hashesChecked: 0, finalHash: '', msPerTick: 0, droppedBytes: 0 };
+    const report: ReplayReport = { file, header, status: 'ok', log: 'complete', ticks: 0, hashesChecked: 0, finalHash: '', msPerTick: 0, droppedBytes: 0, startTick: 0 };
+    let skipBefore = start?.index ?? 0;
+    let skippedHash: { tick: number; hash: string; index: number; offset: number } | null = null;
     const jolt = installedJoltVersion();
     if (header.joltVersion !== jolt) report.joltVersionNote = `recorded with jolt-physics ${header.joltVersion}, replaying with ${jolt}: hashes may differ`;
+    if (note) report.scenarioNote = note;
     const hashes = opts.collectHashes ? [s.stateHash()] : null;
     const toTick = opts.toTick ?? Number.POSITIVE_INFINITY;
     let stepMs = 0;
@@ -85,6 +147,30 @@ export async function replayLog(file: string, opts: ReplayOptions = {}): Promise
     const entries = reader.entries();
     try {
       for await (const e of entries) {
+        if (e.index < skipBefore) {
+          if (e.type === 'hash') skippedHash = { tick: e.tick, hash: e.hash, index: e.index, offset: e.offset };
+          continue;
+        }
+        if (e.type === 'checkpoint' && e.index === skipBefore && start !== null) {
+          skipBefore = 0;
+          try {
+            s.restoreCheckpointBytes(e.bytes);
+          } catch (err) {
+            throw new LogCorruptError(e.index, e.offset, `the checkpoint at tick ${e.tick} cannot be restored: ${err instanceof Error ? err.message : 'it threw'}`);
+          }
+          report.startTick = e.tick;
+          // The hash recorded at the checkpoint's tick (written just before it) checks the restored state.
+          if (skippedHash !== null && skippedHash.tick === e.tick) {
+            report.hashesChecked++;
+            const actual = s.stateHash();
+            if (actual !== skippedHash.hash) {
+              report.status = 'diverged';
+              report.divergence = { tick: e.tick, expected: skippedHash.hash, actual, recordIndex: skippedHash.index, byteOffset: skippedHash.offset, state: null, stateNote: 'the recorded checkpoint does not restore to the state hash recorded with it' };
+              break;
+            }
+          }
+          continue;
+        }
         if (e.type === 'tick') {
           if (s.tick >= toTick) break;
           const t0 = performance.now();
@@ -107,7 +193,7 @@ export async function replayLog(file: string, opts: ReplayOptions = {}): Promise
           report.hashesChecked++;
           if (actual !== e.hash) {
             report.status = 'diverged';
-            report.divergence = await locateDivergence(s, entries, e, actual);
+            report.divergence = await locateDivergence(s, def, entries, e, actual);
             break;
           }
         }
@@ -134,13 +220,13 @@ export async function replayLog(file: string, opts: ReplayOptions = {}): Promise
  * After a hash mismatch at `bad.tick`, keeps replaying to the first recorded checkpoint at or after it, restores
  * that checkpoint into a second simulation and compares the two states: the recorded run's bodies against ours.
  */
-async function locateDivergence(sim: Simulation, entries: AsyncGenerator<LogEntry>, bad: LogEntry & { hash: string; tick: number }, actual: string): Promise<ReplayDivergence> {
+async function locateDivergence(sim: Simulation, def: ScenarioDefinition, entries: AsyncGenerator<LogEntry>, bad: LogEntry & { hash: string; tick: number }, actual: string): Promise<ReplayDivergence> {
   const d: ReplayDivergence = { tick: bad.tick, expected: bad.hash, actual, recordIndex: bad.index, byteOffset: bad.offset, state: null };
   try {
     for await (const e of entries) {
       if (e.type === 'tick') sim.step(e.record);
       else if (e.type === 'checkpoint') {
-        const recorded = await createSimulation(scenarioNamed(sim.scenarioName), sim.params, sim.seed);
+        const recorded = await createSimulation(def, sim.params, sim.seed);
         try {
           recorded.restoreCheckpointBytes(e.bytes);
           const diff = sim.firstDivergence(recorded);

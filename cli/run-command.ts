@@ -5,13 +5,13 @@ import { emptyTickInput } from '../shared/sim/types.ts';
 import type { ParsedArgs } from './args.ts';
 import { ExitCode, type CliIo, type CommandSpec } from './command.ts';
 import { ProgressBar } from './progress.ts';
-import { createSimulation, parseSeed, scenarioNamed } from './scenario-setup.ts';
+import { createSimulation, parseSeed, scenarioFromArg } from './scenario-setup.ts';
 
 /** Default length of a headless run: ten seconds of play. */
 export const DEFAULT_RUN_TICKS = 600;
 
 async function run(args: ParsedArgs, io: CliIo): Promise<number> {
-  const def = scenarioNamed(args.string('scenario')!);
+  const def = await scenarioFromArg(args.string('scenario')!);
   const params = args.pairs('param');
   const seed = parseSeed(args.string('seed'));
   const ticks = args.number('ticks', DEFAULT_RUN_TICKS);
@@ -46,7 +46,7 @@ export const runCommand: CommandSpec = {
   details: 'Without --bots every tick is empty (no players). msPerTick is the mean time of Simulation.step.',
   positionals: [],
   flags: [
-    { name: 'scenario', kind: 'string', valueName: 'NAME', description: 'scenario to run (see "scenarios")', required: true },
+    { name: 'scenario', kind: 'string', valueName: 'NAME|FILE', description: 'scenario to run: a built-in name (see "scenarios") or a module file', required: true },
     { name: 'ticks', kind: 'int', valueName: 'N', description: `ticks to simulate (default ${DEFAULT_RUN_TICKS})`, min: 0, max: 100_000_000 },
     { name: 'param', kind: 'pair', valueName: 'k=v', description: 'scenario parameter (repeatable)' },
     { name: 'seed', kind: 'string', valueName: 'S', description: 'PRNG seed: an integer in [0, 2^32) or a word (default 1)' },

@@ -1,7 +1,8 @@
-// Turns command-line scenario choices into a Simulation: scenario lookup by name, parameter and seed checks (each
-// mistake a UsageError naming the valid choices), and Jolt loading for Node.
+// Turns command-line scenario choices into a Simulation: scenario lookup by name or module file, parameter and seed
+// checks (each mistake a UsageError naming the valid choices), and Jolt loading for Node.
 import '../server/physics-node.ts';
 import { getScenario, listScenarios } from '../scenarios/index.ts';
+import { isScenarioPath, loadScenarioModule, ScenarioModuleError } from '../server/scenario-module.ts';
 import { resolveParams, type ScenarioDefinition } from '../shared/sim/scenario.ts';
 import { Simulation } from '../shared/sim/simulation.ts';
 import { didYouMean } from './args.ts';
@@ -23,6 +24,17 @@ export function scenarioNamed(name: string): ScenarioDefinition {
   if (def) return def;
   const names = allScenarios().map((s) => s.name);
   throw new UsageError(`unknown scenario '${name}'${didYouMean(name, names)}; known: ${names.join(', ')}`);
+}
+
+/** What a --scenario value names: a module file (`./game.ts`, exporting a defineScenario result) or a built-in. */
+export async function scenarioFromArg(value: string): Promise<ScenarioDefinition> {
+  if (!isScenarioPath(value)) return scenarioNamed(value);
+  try {
+    return await loadScenarioModule(value);
+  } catch (err) {
+    if (err instanceof ScenarioModuleError) throw new UsageError(err.message);
+    throw err;
+  }
 }
 
 /** Checks parameters against the scenario's declared limits (UsageError on an unknown name or a bad value). */

@@ -3,51 +3,26 @@
 // (HTTP(S) + WebSocket on one port) until SIGINT/SIGTERM. Secrets may come from the environment (TAOS_ADMIN_TOKEN,
 // TAOS_JOIN_SECRET) so they stay out of `ps` output.
 import { readFileSync } from 'node:fs';
+import { availableParallelism } from 'node:os';
 import { DEFAULT_SCENARIO } from '../scenarios/index.ts';
 import { ADMIN_TOKEN_ENV, checkAdminTokenText } from '../server/access/admin-auth.ts';
 import { parseAllowedOrigins } from '../server/access/origin-policy.ts';
 import { JOIN_SECRET_ENV, MIN_JOIN_SECRET_LENGTH } from '../server/access/seat-tokens.ts';
 import type { ConnectionPolicyOptions } from '../server/connection-policy.ts';
-import { AGONES_ENV, agonesSidecarPresent } from '../server/fleet/agones-lifecycle.ts';
+import { DEFAULT_CHECKPOINT_EVERY_SECONDS, DEFAULT_DURABILITY, DEFAULT_DURABILITY_INTERVAL_MS, DURABILITY_MODES, type DurabilityMode } from '../server/recorder.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
+import { LogFormat } from '../server/pretty-log.ts';
+import { agonesOptions, FLEET_FLAGS, fleetOptions } from './fleet-flags.ts';
 import { runServe, type ServeOptions } from './serve.ts';
 import type { ParsedArgs } from './args.ts';
 import { UsageError, type CliIo, type CommandSpec } from './command.ts';
-import { checkParams, parseSeed, scenarioNamed } from './scenario-setup.ts';
+import { resolve as resolvePath } from 'node:path';
+import { pathToFileURL } from 'node:url';
+import { scenarioSource } from '../server/create-server.ts';
+import { isScenarioPath } from '../server/scenario-module.ts';
+import { checkParams, parseSeed, scenarioFromArg } from './scenario-setup.ts';
 
 const LOG_LEVELS = ['trace', 'debug', 'info', 'warn', 'error', 'fatal', 'silent'];
-/** The environment variable that may hold --redis (its URL can carry a password). */
-const REDIS_URL_ENV = 'TAOS_REDIS_URL';
-
-/** The fleet flags (--redis or TAOS_REDIS_URL, --public-url, --fleet-ttl, --fleet-prefix), checked; undefined without Redis. */
-function fleetOptions(args: ParsedArgs): ServeOptions['fleet'] {
-  const redisUrl = secret(args, 'redis', REDIS_URL_ENV);
-  const publicUrl = args.string('public-url');
-  if (redisUrl === null) {
-    for (const flag of ['public-url', 'fleet-ttl', 'fleet-prefix']) if (args.has(flag)) throw new UsageError(`--${flag} needs --redis URL (or ${REDIS_URL_ENV})`);
-    return undefined;
-  }
-  let protocol: string;
-  try {
-    protocol = new URL(redisUrl).protocol;
-  } catch {
-    throw new UsageError(`--redis must be a redis:// or rediss:// URL`);
-  }
-  if (protocol !== 'redis:' && protocol !== 'rediss:') throw new UsageError(`--redis must be a redis:// or rediss:// URL, got a ${protocol} URL`);
-  if (publicUrl !== undefined) {
-    let ok = false;
-    try {
-      const p = new URL(publicUrl).protocol;
-      ok = p === 'http:' || p === 'https:';
-    } catch {
-      ok = false;
-    }
-    if (!ok) throw new UsageError(`--public-url must be an http:// or https:// URL where players reach this server, got ${JSON.stringify(publicUrl)}`);
-  }
-  const prefix = args.string('fleet-prefix');
-  if (prefix !== undefined && !/^[A-Za-z0-9_.:-]{1,64}$/.test(prefix)) throw new UsageError('--fleet-prefix must be 1-64 characters of A-Z a-z 0-9 _ . : -');
-  return { redisUrl, publicUrl, ttlSeconds: args.has('fleet-ttl') ? args.number('fleet-ttl') : undefined, prefix };
-}
 
 /** The PEM files of --tls-cert and --tls-key (both or neither), read now so a typo is a usage error. */
 function readTls(certPath: string | undefined, keyPath: string | undefined): { cert: Buffer; key: Buffer } | undefined {
@@ -97,24 +72,39 @@ function accessOptions(args: ParsedArgs): Pick<ServeOptions, 'allowedOrigins' | 
   };
 }
 
-/** The Agones flags: on with --agones or when the sidecar's environment is set; undefined otherwise. */
-function agonesOptions(args: ParsedArgs): ServeOptions['agones'] {
-  if (!args.flag('agones') && !agonesSidecarPresent()) {
-    for (const flag of ['agones-single-session', 'agones-drain']) if (args.has(flag)) throw new UsageError(`--${flag} needs --agones (or the Agones sidecar's ${AGONES_ENV.join('/')})`);
-    return undefined;
-  }
-  return { singleSession: args.flag('agones-single-session'), drainSeconds: args.has('agones-drain') ? args.number('agones-drain') : undefined };
+/** The port from the PORT environment variable (what hosting platforms set), else 8080; a bad value is a usage error. */
+export function portFromEnv(env: string | undefined): number {
+  if (env === undefined || env === '') return 8080;
+  const port = Number(env);
+  if (!/^\d+$/.test(env) || port > 65535) throw new UsageError(`PORT must be a TCP port (0-65535), got "${env}"`);
+  return port;
+}
+
+/** --durability, --durability-interval-ms and --checkpoint-every, checked. */
+function recordingOptions(args: ParsedArgs): Pick<ServeOptions, 'durability' | 'checkpointEverySeconds'> {
+  const mode = args.string('durability') ?? DEFAULT_DURABILITY;
+  if (!(DURABILITY_MODES as readonly string[]).includes(mode)) throw new UsageError(`--durability must be one of ${DURABILITY_MODES.join(', ')}, got "${mode}"`);
+  if (args.has('durability-interval-ms') && mode !== 'interval') throw new UsageError('--durability-interval-ms goes with --durability interval');
+  return {
+    durability: { mode: mode as DurabilityMode, intervalMs: args.number('durability-interval-ms', DEFAULT_DURABILITY_INTERVAL_MS) },
+    checkpointEverySeconds: args.number('checkpoint-every', DEFAULT_CHECKPOINT_EVERY_SECONDS),
+  };
 }
 
 async function run(args: ParsedArgs, io: CliIo): Promise<number> {
   const scenario = args.string('scenario') ?? DEFAULT_SCENARIO;
-  const def = scenarioNamed(scenario);
+  const def = await scenarioFromArg(scenario);
+  // A game's own module: its scenario is the only one the server offers.
+  // Room workers import that module themselves: a definition holds functions and cannot be handed to a thread.
+  const own = isScenarioPath(scenario) ? { scenarios: scenarioSource([def]), workerScenarioModules: [pathToFileURL(resolvePath(scenario)).href] } : {};
   const params = args.pairs('param');
   checkParams(def, params);
   const record = args.string('record');
   if (record === '') throw new UsageError('--record must name a directory');
   const logLevel = args.string('log-level');
   if (logLevel !== undefined && !LOG_LEVELS.includes(logLevel)) throw new UsageError(`--log-level must be one of ${LOG_LEVELS.join(', ')}, got "${logLevel}"`);
+  const logFormat = args.string('log-format');
+  if (logFormat !== undefined && logFormat !== LogFormat.Json && logFormat !== LogFormat.Pretty) throw new UsageError(`--log-format must be json or pretty, got "${logFormat}"`);
   const host = args.string('host') ?? '127.0.0.1';
   if (host === '') throw new UsageError('--host must not be empty');
   const connectionPolicy: Partial<ConnectionPolicyOptions> = {};
@@ -122,15 +112,17 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
   if (args.has('max-pending-per-address')) connectionPolicy.maxPendingPerAddress = args.number('max-pending-per-address');
   return runServe(
     {
-      port: args.number('port', 8080),
+      port: args.has('port') ? args.number('port') : portFromEnv(process.env.PORT),
       host,
-      scenario,
+      scenario: def.name,
+      ...own,
       params,
       seed: parseSeed(args.string('seed')),
       snapshotRateHz: args.number('snapshot-rate', 30),
       recordDir: record ?? null,
       maxClients: args.number('max-clients', 32),
       maxRooms: args.number('max-rooms'),
+      roomWorkers: args.number('room-workers', availableParallelism()),
       maxConnections: args.number('max-connections'),
       connectionPolicy,
       limits: args.has('hello-timeout-ms') ? { helloTimeoutMs: args.number('hello-timeout-ms') } : undefined,
@@ -138,6 +130,8 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
       tls: readTls(args.string('tls-cert'), args.string('tls-key')),
       clientDir: args.string('client-dir'),
       logLevel,
+      logFormat,
+      ...recordingOptions(args),
       fleet: fleetOptions(args),
       agones: agonesOptions(args),
       ...accessOptions(args),
@@ -153,21 +147,30 @@ export const serveCommand: CommandSpec = {
   details:
     'Serves the browser client at /, WebSocket play on the same port, /healthz, /metrics (Prometheus) and\n' +
     '/api/rooms. The default room runs --scenario; a client may open another room by naming a scenario as its room.\n' +
-    'With --record DIR every room writes its input log there (replay it with `replay FILE`). Logs are JSON lines on\n' +
-    'stderr. SIGINT/SIGTERM: clients are told why, recordings are closed, then the process exits.\n' +
+    'With --record DIR every room writes its input log there (replay it with `replay FILE`), with a checkpoint every\n' +
+    `--checkpoint-every seconds. --durability (default ${DEFAULT_DURABILITY}): "tick" writes and fdatasyncs each tick's record (group\n` +
+    'commit) before its snapshot, events or input acks leave, so a crash loses nothing any client saw, for a fraction\n' +
+    'of a millisecond per tick (docs/server.md); "interval" syncs every --durability-interval-ms and holds nothing\n' +
+    'back (a crash loses at most that much); "off" hands records to the OS every second. Logs go to stderr:\n' +
+    'readable lines on a terminal, JSON lines when piped (or with --log-format json). SIGINT/SIGTERM: clients are\n' +
+    'told why, recordings are closed, then the process exits.\n' +
     `Access control (docs/server.md): pages from other origins are refused; ${ADMIN_TOKEN_ENV} and ${JOIN_SECRET_ENV} may\n` +
     'replace --admin-token and --join-secret (the flag wins).',
   positionals: [],
   flags: [
-    { name: 'port', kind: 'int', valueName: 'PORT', description: 'TCP port (0: any free port); default 8080', min: 0, max: 65535 },
+    { name: 'port', kind: 'int', valueName: 'PORT', description: 'TCP port (0: any free port); default the PORT environment variable, else 8080', min: 0, max: 65535 },
     { name: 'host', kind: 'string', valueName: 'HOST', description: 'interface to bind; default 127.0.0.1' },
-    { name: 'scenario', kind: 'string', valueName: 'NAME', description: `scenario of the default room; default ${DEFAULT_SCENARIO}` },
+    { name: 'scenario', kind: 'string', valueName: 'NAME|FILE', description: `scenario of the default room: a built-in name or a module file (then the only one offered); default ${DEFAULT_SCENARIO}` },
     { name: 'param', kind: 'pair', valueName: 'k=v', description: 'scenario parameter (repeatable)' },
     { name: 'seed', kind: 'string', valueName: 'SEED', description: 'simulation seed of every room; default 1' },
     { name: 'snapshot-rate', kind: 'int', valueName: 'HZ', description: `snapshots per second per client (1-${TICK_RATE_HZ}); default 30`, min: 1, max: TICK_RATE_HZ },
     { name: 'record', kind: 'string', valueName: 'DIR', description: "write every room's input log into DIR" },
+    { name: 'durability', kind: 'string', valueName: 'MODE', description: `when recorded ticks reach the disk: tick, interval or off; default ${DEFAULT_DURABILITY}` },
+    { name: 'durability-interval-ms', kind: 'int', valueName: 'MS', description: `sync period of --durability interval; default ${DEFAULT_DURABILITY_INTERVAL_MS}`, min: 1, max: 60_000 },
+    { name: 'checkpoint-every', kind: 'int', valueName: 'SECONDS', description: `a checkpoint in recordings every SECONDS of play (0: none); default ${DEFAULT_CHECKPOINT_EVERY_SECONDS}`, min: 0, max: 86_400 },
     { name: 'max-clients', kind: 'int', valueName: 'N', description: 'most clients per room; default 32', min: 1, max: 1000 },
     { name: 'max-rooms', kind: 'int', valueName: 'N', description: 'most rooms at once (each is a Jolt world in the 128 MB heap); default 6', min: 1, max: 32 },
+    { name: 'room-workers', kind: 'int', valueName: 'N', description: "worker threads that run the rooms (0: every room on the main thread); default the machine's cores", min: 0, max: 256 },
     { name: 'max-connections', kind: 'int', valueName: 'N', description: 'most WebSocket connections in all; default 256', min: 1, max: 100_000 },
     { name: 'max-connections-per-address', kind: 'int', valueName: 'N', description: 'most WebSocket connections from one address (IPv6: one /64); default 32', min: 1, max: 100_000 },
     { name: 'max-pending-per-address', kind: 'int', valueName: 'N', description: 'most connections from one address that have not said hello yet; default 8', min: 1, max: 100_000 },
@@ -177,18 +180,13 @@ export const serveCommand: CommandSpec = {
     { name: 'trust-proxy', kind: 'boolean', description: 'take client addresses from X-Forwarded-For/-Proto (only behind a reverse proxy)' },
     { name: 'client-dir', kind: 'string', valueName: 'DIR', description: 'built browser client to serve; default dist/client' },
     { name: 'log-level', kind: 'string', valueName: 'LEVEL', description: 'log level (trace, debug, info, warn, error, silent); default info' },
+    { name: 'log-format', kind: 'string', valueName: 'FORMAT', description: 'log lines on stderr: pretty (time, level, message, fields) or json; default pretty on a terminal, else json' },
     { name: 'allowed-origins', kind: 'string', valueName: 'LIST', description: 'comma-separated origins whose pages may connect or post (plus self, loopback, *); default self,loopback' },
     { name: 'admin-token', kind: 'string', valueName: 'TOKEN', description: `bearer token required for POST/DELETE /api/... and /metrics (or ${ADMIN_TOKEN_ENV}); default none` },
     { name: 'join-secret', kind: 'string', valueName: 'SECRET', description: `HMAC key of seat tokens, shared by servers that accept each other's seats (or ${JOIN_SECRET_ENV}); default random` },
     { name: 'require-seat', kind: 'boolean', description: 'admit only players whose hello carries a seat token (needs an admin token)' },
     { name: 'seat-ttl', kind: 'int', valueName: 'SECONDS', description: 'lifetime of a seat token; default 60', min: 1, max: 3600 },
-    { name: 'redis', kind: 'string', valueName: 'URL', description: `join a fleet of servers through this Redis directory (or ${REDIS_URL_ENV}); default: one process` },
-    { name: 'public-url', kind: 'string', valueName: 'URL', description: 'with --redis: where players reach this server (http:// or https://); default the listening address' },
-    { name: 'fleet-ttl', kind: 'int', valueName: 'SECONDS', description: 'with --redis: a silent server and its rooms leave the directory after this long; default 10', min: 1, max: 3600 },
-    { name: 'fleet-prefix', kind: 'string', valueName: 'PREFIX', description: 'with --redis: prefix of every directory key (one Redis, several fleets); default taos:' },
-    { name: 'agones', kind: 'boolean', description: `run as an Agones GameServer through the SDK sidecar (on by itself when ${AGONES_ENV[0]} is set)` },
-    { name: 'agones-single-session', kind: 'boolean', description: 'with Agones: Allocate when the first player joins, Shutdown once the session is over' },
-    { name: 'agones-drain', kind: 'int', valueName: 'SECONDS', description: 'with Agones: how long a finished session stays idle before Shutdown; default 5', min: 0, max: 3600 },
+    ...FLEET_FLAGS,
     { name: 'resume-grace', kind: 'int', valueName: 'SECONDS', description: 'how long a dropped player is held for a reconnect (0: off); default 30', min: 0, max: 3600 },
   ],
   run,

@@ -1,23 +1,27 @@
-// The `serve` command's body: starts the server with the command-line options, prints where it listens, logs JSON
-// lines to stderr, keeps going after an uncaught error (last resort: logged and counted), and on SIGINT/SIGTERM
+// The `serve` command's body: starts the server with the command-line options, prints where it listens, logs to
+// stderr (pretty lines on a terminal, JSON lines otherwise), keeps going after an uncaught error (last resort: logged and counted), and on SIGINT/SIGTERM
 // shuts down cleanly (byes, recordings ended, logs flushed) and returns.
 import type { CliIo } from './command.ts';
 import { installLastResort } from '../server/last-resort.ts';
 import { createLogger } from '../server/logger.ts';
+import { LogFormat } from '../server/pretty-log.ts';
 import { installShutdown, type SignalSource } from '../server/shutdown.ts';
 import { startServer, type StartServerOptions } from '../server/start-server.ts';
 
 /** Options of runServe: the server's plus logging and signal hooks. */
 export interface ServeOptions extends Omit<StartServerOptions, 'logger'> {
-  /** pino level for the JSON log on stderr. Default info. */
+  /** pino level for the log on stderr. Default info. */
   logLevel?: string;
+  /** Log line format on stderr; default pretty when stderr is a terminal, else JSON. */
+  logFormat?: LogFormat;
   /** Where signals come from (default the process). */
   signals?: SignalSource;
 }
 
 /** Runs until a signal; resolves to the exit code (0 after a clean shutdown, 1 when it failed or hung). */
 export async function runServe(opts: ServeOptions, io: CliIo): Promise<number> {
-  const logger = createLogger({ level: opts.logLevel ?? process.env.TAOS_LOG_LEVEL ?? 'info', fd: 2 });
+  const format = opts.logFormat ?? (io.stderrIsTTY ? LogFormat.Pretty : LogFormat.Json);
+  const logger = createLogger({ level: opts.logLevel ?? process.env.TAOS_LOG_LEVEL ?? 'info', fd: 2, format, colour: io.stderrIsTTY });
   let server;
   try {
     server = await startServer({ ...opts, logger });

@@ -2,12 +2,14 @@
 // and compares their per-tick hash sequences with each other and with the log; exit 1 on any difference.
 import { spawn } from 'node:child_process';
 import { availableParallelism } from 'node:os';
+import { extname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { Worker } from 'node:worker_threads';
 import { LogReader } from '../server/log/log-reader.ts';
 import type { ParsedArgs } from './args.ts';
 import { ExitCode, UsageError, type CliIo, type CommandSpec } from './command.ts';
-import { describeFailure, type ReplayVerdict } from './replay-command.ts';
+import { describeFailure, SCENARIO_MODULE_FLAGS, type ReplayVerdict } from './replay-command.ts';
+import { scenarioFromArg } from './scenario-setup.ts';
 import type { ReplayReport } from './replay-session.ts';
 
 const BIN = fileURLToPath(new URL('../bin/taos-physics.js', import.meta.url));
@@ -34,10 +36,17 @@ function parseReplayJson(parsed: unknown): RunResult | null {
   return { status: report.status, hashes: p.hashes as string[], msPerTick: Number(p.msPerTick), report };
 }
 
+/** Which scenario module a replay loads (a log of a game's own scenario) and whether it may differ. */
+interface ScenarioChoice {
+  scenarioPath?: string;
+  force: boolean;
+}
+
 /** Replays in a child process running this same CLI (`replay FILE --json --hashes`). */
-function replayInProcess(file: string): Promise<RunResult> {
+function replayInProcess(file: string, choice: ScenarioChoice): Promise<RunResult> {
+  const extra = [...(choice.scenarioPath !== undefined ? ['--scenario', choice.scenarioPath] : []), ...(choice.force ? ['--force'] : [])];
   return new Promise((resolve, reject) => {
-    const child = spawn(process.execPath, [BIN, 'replay', file, '--json', '--hashes'], { stdio: ['ignore', 'pipe', 'pipe'] });
+    const child = spawn(process.execPath, [BIN, 'replay', file, '--json', '--hashes', ...extra], { stdio: ['ignore', 'pipe', 'pipe'] });
     const out: Buffer[] = [];
     const err: Buffer[] = [];
     child.stdout.on('data', (b: Buffer) => out.push(b));
@@ -59,9 +68,9 @@ function replayInProcess(file: string): Promise<RunResult> {
 }
 
 /** Replays in a worker thread of this process (its own Jolt instance). */
-function replayInWorker(file: string): Promise<RunResult> {
+function replayInWorker(file: string, choice: ScenarioChoice): Promise<RunResult> {
   return new Promise((resolve, reject) => {
-    const worker = new Worker(new URL('./verify-worker.ts', import.meta.url), { workerData: { file } });
+    const worker = new Worker(new URL(`./verify-worker${extname(fileURLToPath(import.meta.url))}`, import.meta.url), { workerData: { file, ...choice } });
     let settled = false;
     worker.once('message', (msg: { ok: true; report: ReplayReport } | { ok: false; error: string }) => {
       settled = true;
@@ -112,7 +121,13 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
     throw err;
   }
   const limit = Math.max(1, Math.min(runs, availableParallelism()));
-  const results = await pool(runs, limit, () => (workers ? replayInWorker(file) : replayInProcess(file)));
+  const choice: ScenarioChoice = { force: args.flag('force') };
+  const scenarioPath = args.string('scenario');
+  if (scenarioPath !== undefined) {
+    await scenarioFromArg(scenarioPath); // a missing or broken module is a usage error here, not N failed runs
+    choice.scenarioPath = resolve(scenarioPath);
+  }
+  const results = await pool(runs, limit, () => (workers ? replayInWorker(file, choice) : replayInProcess(file, choice)));
   const ref = results[0];
   const problems: string[] = [];
   results.forEach((r, i) => {
@@ -158,6 +173,7 @@ export const verifyCommand: CommandSpec = {
     { name: 'runs', kind: 'int', valueName: 'N', description: 'independent replays (default 2)', min: 2, max: 64 },
     { name: 'workers', kind: 'boolean', description: 'use worker threads of this process instead of child processes' },
     { name: 'json', kind: 'boolean', description: 'print a JSON summary on stdout' },
+    ...SCENARIO_MODULE_FLAGS,
   ],
   run,
 };

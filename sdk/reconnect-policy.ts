@@ -1,6 +1,6 @@
 // When and how soon the client reconnects: exponential backoff with jitter, a cap on attempts, and which endings
-// are final (a kick, a refused version or seat, a missing room, a takeover) versus worth retrying (drops, restarts,
-// a full server).
+// are final (a shutdown, a kick, a full room or server, a refused version or seat, a missing room, a takeover) versus
+// worth retrying (a dropped link, a timeout).
 import { ErrorCode, RECONNECTABLE_BYE_REASONS } from '../shared/protocol/opcodes.ts';
 
 /** Reconnect settings. */
@@ -48,9 +48,11 @@ const FINAL_ERRORS: ReadonlySet<string> = new Set<string>([
   ErrorCode.Malformed,
   ErrorCode.SeatRequired,
   ErrorCode.SeatRefused,
+  ErrorCode.RoomFull,
+  ErrorCode.ServerFull,
 ]);
 
-/** Whether an ending allows a reconnect: no bye or a restart-like bye, and no final error before the welcome. */
+/** Whether an ending allows a reconnect: no bye or a timeout bye, and no final error before the welcome. */
 export function isRetryable(bye: string | null, errorBeforeWelcome: string | null): boolean {
   if (bye !== null) return RECONNECTABLE_BYE_REASONS.has(bye);
   if (errorBeforeWelcome !== null) return !FINAL_ERRORS.has(errorBeforeWelcome);

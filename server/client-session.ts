@@ -1,6 +1,6 @@
 // One client connection from hello to bye: validates every incoming frame, enforces per-client rate and error limits,
-// joins a room (or resumes a held player), feeds inputs/acks/pings to it, and sends welcome, events (reliable) and
-// snapshots (skipped when the socket is backed up). Nothing a client sends reaches the room unvalidated or under
+// enters a room (or resumes a held player) wherever it runs, feeds inputs/acks/pings to its seat, and is the
+// MemberSink the room's bytes for this client arrive at. Nothing a client sends reaches the room unvalidated or under
 // another player's id.
 import type { Clock, TimerHandle } from '../shared/clock.ts';
 import {
@@ -9,22 +9,20 @@ import {
   encodeServerMessage,
   ErrorCode,
   MAX_CLIENT_MESSAGE_BYTES,
-  SnapshotEncoder,
   type ClientMessage,
   type HelloMessage,
   type ServerMessage,
 } from '../shared/protocol/index.ts';
-import type { SimEvent } from '../shared/sim/types.ts';
 import { admitSeat, type SessionAccess } from './access/admission.ts';
 import type { ResumeHolder } from './access/resume-tokens.ts';
 import { CloseCode, type ServerConnection } from './connection.ts';
+import { DeliveryKind, type HostedRoom, type MemberSink, type RoomEntry, type Seat } from './hosted-room.ts';
 import { OfferResult } from './input-buffer.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
 import { RateLimiter, type RateLimit } from './rate-limiter.ts';
 import { RoomMovedError } from './fleet/room-moved.ts';
-import { RoomError, type Room, type RoomMember, type WorldFrame } from './room.ts';
-import { buildWelcome } from './welcome.ts';
+import { RoomError } from './room.ts';
 import type { RoomManager } from './room-manager.ts';
 
 /** Per-client limits. */
@@ -92,7 +90,7 @@ let nextSessionId = 1;
 type Ending = 'leave' | 'hold';
 
 /** One connected client. */
-export class ClientSession implements RoomMember, ResumeHolder {
+export class ClientSession implements MemberSink, ResumeHolder {
   readonly id = nextSessionId++;
   readonly conn: ServerConnection;
   readonly stats: SessionStats = { messagesReceived: 0, badMessages: 0, errorsSent: 0, snapshotsSent: 0, snapshotsSkipped: 0, snapshotBytes: 0, bytesSent: 0, inputsLate: 0, inputsTooFar: 0 };
@@ -102,9 +100,9 @@ export class ClientSession implements RoomMember, ResumeHolder {
   private readonly badLimiter: RateLimiter;
   private state: 'hello' | 'joining' | 'joined' | 'closed' = 'hello';
   private helloTimer: TimerHandle | null;
-  private room: Room | null = null;
+  private room: HostedRoom | null = null;
   private playerId = 0;
-  private encoder: SnapshotEncoder | null = null;
+  private seat: Seat | null = null;
   /** The seat this session's hello used, until the join it was for succeeds (given back if it fails). */
   private seatId: string | null = null;
 
@@ -132,7 +130,7 @@ export class ClientSession implements RoomMember, ResumeHolder {
   }
 
   /** The room once joined. */
-  get currentRoom(): Room | null {
+  get currentRoom(): HostedRoom | null {
     return this.room;
   }
 
@@ -199,7 +197,7 @@ export class ClientSession implements RoomMember, ResumeHolder {
         this.onHello(msg);
         return;
       case 'input': {
-        if (this.state !== 'joined' || !this.room) {
+        if (this.state !== 'joined' || !this.seat) {
           this.refuse(ErrorCode.UnexpectedMessage, 'input before the welcome');
           return;
         }
@@ -208,27 +206,27 @@ export class ClientSession implements RoomMember, ResumeHolder {
           return;
         }
         for (let i = 0; i < msg.commands.length; i++) {
-          const r = this.room.offerInput(this.playerId, msg.firstTick + i, msg.commands[i]);
+          const r = this.seat.offerInput(msg.firstTick + i, msg.commands[i]);
           if (r === OfferResult.Late) this.stats.inputsLate++;
           else if (r === OfferResult.TooFar) this.stats.inputsTooFar++;
         }
         return;
       }
       case 'ack':
-        if (this.state !== 'joined' || !this.encoder) {
+        if (this.state !== 'joined' || !this.seat) {
           this.refuse(ErrorCode.UnexpectedMessage, 'ack before the welcome');
           return;
         }
-        this.encoder.acknowledge(msg.tick);
+        this.seat.acknowledge(msg.tick);
         return;
       case 'ping': {
-        const room = this.room;
+        const seat = this.room ? this.seat : null;
         this.send({
           type: 'pong',
           clientTimeMs: msg.clientTimeMs,
-          serverTick: room ? room.sim.tick : 0,
+          serverTick: seat ? seat.serverTick() : 0,
           serverTimeMs: this.ctx.clock.nowMs(),
-          missedInputTicks: room ? room.missedInputTicks(this.playerId) : 0,
+          missedInputTicks: seat ? seat.missedInputTicks() : 0,
         });
         return;
       }
@@ -251,7 +249,7 @@ export class ClientSession implements RoomMember, ResumeHolder {
       const resume = this.ctx.access.resume;
       const claim = resume ? resume.claim(hello.resumeToken, hello.room) : ({ ok: false, reason: 'this server does not resume players' } as const);
       if (claim.ok) {
-        this.resumePlayer(claim.room, claim.playerId);
+        this.enterRoom(claim.room, { resumePlayerId: claim.playerId });
         return;
       }
       // Not fatal: the client is told why and joins as a new player (under the same seat rules as anyone).
@@ -269,48 +267,52 @@ export class ClientSession implements RoomMember, ResumeHolder {
     this.ctx.rooms
       .resolve(seat.roomId === null ? {} : { roomId: seat.roomId })
       .then(
-        (room) => this.joinRoom(room, hello.name),
+        (room) => {
+          if (this.state !== 'joining') {
+            this.giveSeatBack(); // the client left while the room was being created
+            return;
+          }
+          this.enterRoom(room, { name: hello.name });
+        },
         (error: unknown) => this.joinFailed(error),
       )
       .catch((error: unknown) => this.failed(error)); // the welcome path is part of handling the hello
   }
 
-  private joinRoom(room: Room, name: string): void {
-    if (this.state !== 'joining') {
-      this.giveSeatBack(); // the client left while the room was being created
-      return;
-    }
-    let joined;
-    try {
-      joined = room.join(this, name);
-    } catch (error) {
-      this.joinFailed(error);
-      return;
-    }
-    this.seatId = null;
-    this.enterRoom(room, joined.playerId, false);
-    this.ctx.logger.info({ session: this.id, remote: this.conn.remote, room: room.id, playerId: joined.playerId, name }, 'player joined');
+  /** Enters a room as a new player or takes back a claimed one; the welcome goes out once the room has seated it. */
+  private enterRoom(room: HostedRoom, entry: RoomEntry): void {
+    room
+      .enter(this, entry)
+      .then(
+        (seat) => {
+          if (this.state !== 'joining') {
+            room.leave(seat.playerId); // the client left while the room was seating it
+            this.giveSeatBack();
+            return;
+          }
+          this.seatId = null;
+          this.seated(room, seat, entry);
+        },
+        (error: unknown) => this.joinFailed(error),
+      )
+      .catch((error: unknown) => this.failed(error));
   }
 
-  /** Takes over a player claimed with its resume token: same id and character, nothing in the input record. */
-  private resumePlayer(room: Room, playerId: number): void {
-    if (room.reattach(playerId, this) === null) {
-      this.joinFailed(new RoomError(ErrorCode.RoomNotFound, `player ${playerId} is no longer in room ${room.id}`));
-      return;
-    }
-    this.enterRoom(room, playerId, true);
-    this.ctx.metrics.resumes.inc();
-    this.ctx.logger.info({ session: this.id, remote: this.conn.remote, room: room.id, playerId }, 'player resumed');
-  }
-
-  private enterRoom(room: Room, playerId: number, resumed: boolean): void {
+  private seated(room: HostedRoom, seat: Seat, entry: RoomEntry): void {
+    const resumed = 'resumePlayerId' in entry;
     this.room = room;
-    this.playerId = playerId;
+    this.playerId = seat.playerId;
+    this.seat = seat;
     this.state = 'joined';
     const resume = this.ctx.access.resume;
-    const welcome = buildWelcome(room, playerId, { token: resume ? resume.issue(room, playerId, this) : null, graceMs: resume ? resume.graceMs : 0, resumed });
-    this.encoder = welcome.encoder;
-    this.send(welcome.message);
+    const token = resume ? resume.issue(room, seat.playerId, this) : null;
+    this.send({ ...seat.welcome, resumeToken: token, resumeGraceMs: resume ? resume.graceMs : 0, resumed });
+    if (resumed) {
+      this.ctx.metrics.resumes.inc();
+      this.ctx.logger.info({ session: this.id, remote: this.conn.remote, room: room.id, playerId: seat.playerId }, 'player resumed');
+    } else {
+      this.ctx.logger.info({ session: this.id, remote: this.conn.remote, room: room.id, playerId: seat.playerId, name: 'name' in entry ? entry.name : undefined }, 'player joined');
+    }
   }
 
   private giveSeatBack(): void {
@@ -363,42 +365,34 @@ export class ClientSession implements RoomMember, ResumeHolder {
     return bytes.length;
   }
 
-  /** Reliable delivery of one tick's events (RoomMember). */
-  deliverEvents(_tick: number, events: readonly SimEvent[]): void {
-    if (this.state !== 'joined' || !this.room) return;
-    if (this.tooFarBehind()) return;
-    this.sendEncoded(this.room.snapshots.eventsMessage(events));
-  }
-
-  /** A snapshot for this client, unless its socket is backed up (RoomMember). */
-  deliverFrame(frame: WorldFrame): void {
-    if (this.state !== 'joined' || !this.encoder || !this.room) return;
-    if (this.tooFarBehind()) return;
-    const m = this.ctx.metrics;
-    // A full snapshot is on its way and not acked yet: another full one would only repeat it.
-    if (!this.encoder.shouldSend(frame.tick)) return;
-    if (this.conn.bufferedAmount() > this.ctx.limits.snapshotSkipBufferedBytes) {
-      this.stats.snapshotsSkipped++;
-      m.snapshotsSkipped.inc();
-      return;
+  /** One framed message from the room for this client (MemberSink). */
+  deliver(bytes: Uint8Array, kind: DeliveryKind): void {
+    if (this.state !== 'joined') return;
+    const size = this.sendEncoded(bytes);
+    if (kind === DeliveryKind.Snapshot && size > 0) {
+      this.stats.snapshotsSent++;
+      this.stats.snapshotBytes += size;
     }
-    // The room quantizes and frames once per tick what its members share.
-    const { message, encoded } = this.room.snapshots.snapshotFor(this.encoder, frame);
-    const size = this.sendEncoded(message);
-    this.stats.snapshotsSent++;
-    this.stats.snapshotBytes += size;
-    m.snapshotBytes.observe(size);
-    m.snapshotsSent.inc({ kind: encoded.baselineTick === null ? 'full' : 'delta' });
   }
 
-  /** The room dropped this client after a failed delivery (RoomMember). */
+  /** The room skipped a snapshot for this client: its socket is backed up (MemberSink). */
+  snapshotSkipped(): void {
+    this.stats.snapshotsSkipped++;
+  }
+
+  /** Whether this client's socket is backed up past the snapshot threshold (MemberSink). */
+  backedUp(): boolean {
+    return this.conn.bufferedAmount() > this.ctx.limits.snapshotSkipBufferedBytes;
+  }
+
+  /** The room dropped this client after a failed delivery (MemberSink). */
   removed(reason: string): void {
     if (this.room) this.ctx.access.resume?.release(this.room, this.playerId, 'the server removed the player');
     this.room = null;
     this.end(ByeReason.Kicked, reason, CloseCode.InternalError);
   }
 
-  /** The room closed under this client (RoomMember). */
+  /** The room closed under this client (MemberSink). */
   roomClosed(reason: string): void {
     this.room = null;
     this.end(ByeReason.RoomClosed, reason, CloseCode.GoingAway);
@@ -412,7 +406,7 @@ export class ClientSession implements RoomMember, ResumeHolder {
   }
 
   /** Reliable messages may not be dropped; a client this far behind is disconnected instead of queued for. */
-  private tooFarBehind(): boolean {
+  tooFarBehind(): boolean {
     const queued = this.conn.bufferedAmount();
     if (queued <= this.ctx.limits.maxBufferedBytes) return false;
     this.end(ByeReason.Timeout, `connection too slow: ${queued} bytes waiting to be sent`, CloseCode.TryAgainLater);

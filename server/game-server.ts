@@ -10,9 +10,10 @@ import { SystemClock } from './clock.ts';
 import { ClientSession, DEFAULT_SESSION_LIMITS, type SessionLimits } from './client-session.ts';
 import { CloseCode, type ServerConnection } from './connection.ts';
 import { createLogger, type Logger } from './logger.ts';
-import { createMetrics, type ServerMetrics } from './metrics.ts';
+import { createMetrics, renderMergedMetrics, type ServerMetrics } from './metrics.ts';
 import type { RoomInfo } from './room.ts';
 import { RoomManager, type RoomDirectory, type RoomFactory } from './room-manager.ts';
+import type { WorkerPool } from './workers/worker-pool.ts';
 
 /** Options of GameServer.create. */
 export interface GameServerOptions {
@@ -42,6 +43,8 @@ export interface GameServerOptions {
   seats?: SeatTokens | null;
   /** Refuse hellos without a valid seat token. Needs `seats`. Default false. */
   requireSeat?: boolean;
+  /** Room workers to run the rooms in (the server stops them when it closes). Default none: rooms on this thread. */
+  workers?: WorkerPool | null;
   /** With a fleet (`--redis`): room ids are claimed fleet-wide here (server/fleet/). */
   directory?: RoomDirectory;
 }
@@ -57,6 +60,8 @@ export class GameServer {
   readonly maxConnections: number;
   /** Seat and resume rules every session applies. */
   readonly access: SessionAccess;
+  /** The room workers, or null when rooms run on this thread. */
+  readonly workers: WorkerPool | null;
   private readonly sessions = new Set<ClientSession>();
   private readonly startedMs: number;
   private closing: Promise<void> | null = null;
@@ -70,6 +75,7 @@ export class GameServer {
     if (!(this.snapshotRateHz >= 1 && this.snapshotRateHz <= TICK_RATE_HZ)) throw new Error(`snapshot rate must be in [1, ${TICK_RATE_HZ}] Hz, got ${this.snapshotRateHz}`);
     this.maxConnections = opts.maxConnections ?? 256;
     this.startedMs = this.clock.nowMs();
+    this.workers = opts.workers ?? null;
     const graceMs = opts.resumeGraceMs ?? DEFAULT_RESUME_GRACE_MS;
     const seats = opts.seats ?? null;
     if (opts.requireSeat === true && seats === null) throw new Error('requireSeat needs seat tokens (a join secret) to check');
@@ -93,6 +99,7 @@ export class GameServer {
       maxCatchUpTicks: opts.maxCatchUpTicks,
       maxInputLeadTicks: opts.maxInputLeadTicks,
       pauseWhenEmpty: opts.pauseWhenEmpty,
+      host: this.workers,
       directory: opts.directory,
     });
     this.metrics.setRoomHeapSource(() => this.roomHeaps());
@@ -114,9 +121,15 @@ export class GameServer {
     try {
       await server.rooms.start();
     } catch (error) {
+      await server.workers?.stop();
       throw new Error(`cannot open the default room (scenario ${opts.defaultScenario}): ${error instanceof Error ? error.message : String(error)}`, { cause: error });
     }
     return server;
+  }
+
+  /** The Prometheus exposition of this thread's metrics summed with every room worker's. */
+  async renderMetrics(): Promise<{ body: string; contentType: string }> {
+    return renderMergedMetrics(this.metrics, this.workers ? await this.workers.metricsJson() : []);
   }
 
   /** Open sessions. */
@@ -183,6 +196,7 @@ export class GameServer {
       this.logger.info({ reason, sessions: this.sessions.size }, 'closing the server');
       for (const s of [...this.sessions]) s.end(ByeReason.ServerShutdown, reason, CloseCode.GoingAway);
       await this.rooms.closeAll(reason);
+      await this.workers?.stop();
     })();
     return this.closing;
   }

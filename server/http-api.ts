@@ -11,8 +11,9 @@ import type { GameServer } from './game-server.ts';
 import { HttpError, HttpErrorCode } from './http-errors.ts';
 import type { CreateRoomRequest, HttpApi } from './http-server.ts';
 import type { Logger } from './logger.ts';
-import { renderMetrics, type ServerMetrics } from './metrics.ts';
-import { RoomError, type Room, type RoomInfo } from './room.ts';
+import type { ServerMetrics } from './metrics.ts';
+import type { HostedRoom } from './hosted-room.ts';
+import { RoomError, type RoomInfo } from './room.ts';
 import type { ScenarioSource } from './room-factory.ts';
 import { DEFAULT_ROOM_ID, isRoomId } from './room-manager.ts';
 
@@ -46,7 +47,7 @@ export function createHttpApi(opts: HttpApiOptions): HttpApi {
   const { game, scenarios } = opts;
 
   // A room asked for by id that is already open: the same room when scenario and given parameters match, else 409.
-  const matchExisting = (room: Room, req: CreateRoomRequest, params: Readonly<Record<string, number>>): RoomInfo => {
+  const matchExisting = (room: HostedRoom, req: CreateRoomRequest, params: Readonly<Record<string, number>>): RoomInfo => {
     if (room.scenarioName !== req.scenario) {
       throw new HttpError(409, HttpErrorCode.RoomExists, `room ${quote(room.id)} is open with scenario ${quote(room.scenarioName)}, not ${quote(req.scenario)}`);
     }
@@ -102,7 +103,7 @@ export function createHttpApi(opts: HttpApiOptions): HttpApi {
       const seat = opts.access.seats.issue(roomId, req.ttlSeconds === undefined ? undefined : req.ttlSeconds * 1000);
       return { token: seat.token, roomId: seat.roomId, seatId: seat.seatId, expiresAt: new Date(seat.expiresAtMs).toISOString() };
     },
-    metrics: () => renderMetrics(opts.metrics),
+    metrics: () => game.renderMetrics(),
     authorize: opts.access.authorize,
     staticFiles: (req, res) => opts.staticFiles(req, res),
   };

@@ -1,6 +1,8 @@
-// Structured logging for the server: a pino logger (JSON lines, written synchronously: the server logs events, not
-// per-tick data, so nothing is ever lost at exit) with a level, silent in tests, and a flush used by shutdown.
+// Structured logging for the server: a pino logger (JSON lines, or pretty lines for a terminal; written synchronously:
+// the server logs events, not per-tick data, so nothing is ever lost at exit) with a level, silent in tests, and a
+// flush used by shutdown.
 import { pino, type Logger } from 'pino';
+import { LogFormat, prettyDestination } from './pretty-log.ts';
 
 export type { Logger } from 'pino';
 
@@ -10,6 +12,10 @@ export interface LoggerOptions {
   level?: string;
   /** Where lines go: a file descriptor (default 1, stdout). */
   fd?: number;
+  /** JSON lines (default) or human-readable lines (server/pretty-log.ts). */
+  format?: LogFormat;
+  /** Colour the level in pretty lines (a terminal). Default false. */
+  colour?: boolean;
 }
 
 /** The default level: quiet under vitest unless TAOS_LOG_LEVEL says otherwise. */
@@ -22,6 +28,7 @@ export function defaultLogLevel(): string {
 /** Creates the server's logger. */
 export function createLogger(opts: LoggerOptions = {}): Logger {
   const level = opts.level ?? defaultLogLevel();
+  if (opts.format === LogFormat.Pretty) return pino({ level, base: { service: 'taos-physics' } }, prettyDestination(opts.fd ?? 1, opts.colour ?? false));
   const destination = pino.destination({ dest: opts.fd ?? 1, sync: true });
   return pino({ level, base: { service: 'taos-physics' } }, destination);
 }

@@ -1,6 +1,6 @@
 // The server's Prometheus metrics: one prom-client Registry per server instance (so several servers in one process,
 // as in tests, never share counters), the metric objects rooms and sessions update, and the text for GET /metrics.
-import { Counter, Gauge, Histogram, Registry, collectDefaultMetrics } from 'prom-client';
+import { AggregatorRegistry, Counter, Gauge, Histogram, Registry, collectDefaultMetrics, type MetricObjectWithValues, type MetricValue } from 'prom-client';
 
 const TICK_BUCKETS_SECONDS = [0.0005, 0.001, 0.002, 0.004, 0.008, 0.0125, 0.01667, 0.025, 0.05, 0.1, 0.25];
 const SNAPSHOT_BYTE_BUCKETS = [64, 256, 1024, 4096, 16384, 65536, 262144];
@@ -128,4 +128,12 @@ export function createMetrics(opts: { processMetrics?: boolean; prefix?: string 
 /** The Prometheus text exposition of a registry, with its content type. */
 export async function renderMetrics(metrics: ServerMetrics): Promise<{ body: string; contentType: string }> {
   return { body: await metrics.registry.metrics(), contentType: metrics.registry.contentType };
+}
+
+/** The exposition of `metrics` summed with other threads' registries (prom-client JSON from the room workers). */
+export async function renderMergedMetrics(metrics: ServerMetrics, others: readonly unknown[]): Promise<{ body: string; contentType: string }> {
+  if (others.length === 0) return renderMetrics(metrics);
+  const own = await metrics.registry.getMetricsAsJSON();
+  const merged = AggregatorRegistry.aggregate([own, ...(others as Array<Array<MetricObjectWithValues<MetricValue<string>>>>)]);
+  return { body: await merged.metrics(), contentType: metrics.registry.contentType };
 }

@@ -4,7 +4,9 @@
 import { Simulation } from '../shared/sim/simulation.ts';
 import type { ScenarioDefinition } from '../shared/sim/scenario.ts';
 import type { Logger } from './logger.ts';
-import { createRoomRecorder } from './recorder.ts';
+import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
+import { createRoomRecorder, DEFAULT_CHECKPOINT_EVERY_SECONDS, type DurabilityOptions } from './recorder.ts';
+import { scenarioModuleHash } from './scenario-module.ts';
 import type { RoomFactory, RoomSimulationBuild } from './room-manager.ts';
 import type { RoomRecorder } from './room.ts';
 
@@ -22,6 +24,10 @@ export interface RoomFactoryOptions {
   recordDir?: string | null;
   /** Hash records in logs every N ticks. Default 60. */
   hashEveryTicks?: number;
+  /** When recorded records reach the disk. Default { mode: DEFAULT_DURABILITY }. */
+  durability?: DurabilityOptions;
+  /** A checkpoint in logs every N seconds of play (0: none). Default DEFAULT_CHECKPOINT_EVERY_SECONDS. */
+  checkpointEverySeconds?: number;
   /**
    * Free WASM heap a new world needs before it is created (its own arrays + the 10 MB temp allocator + the
    * world's reserve). Measured: character-course ~15 MB, cubes-901 ~19 MB. Default 32 MiB.
@@ -73,10 +79,16 @@ export function createRoomFactory(opts: RoomFactoryOptions): RoomFactory & { liv
     },
     async createRecorder(room): Promise<RoomRecorder | null> {
       if (!opts.recordDir) return null;
+      const sim = room.sim;
+      const def = opts.scenarios.get(room.scenario);
       return createRoomRecorder({
+        durability: opts.durability,
+        checkpointEveryTicks: Math.round((opts.checkpointEverySeconds ?? DEFAULT_CHECKPOINT_EVERY_SECONDS) * TICK_RATE_HZ),
+        checkpoint: sim.saveCheckpointBytes ? () => sim.saveCheckpointBytes!() : undefined,
         dir: opts.recordDir,
         roomId: room.id,
         scenario: room.scenario,
+        scenarioHash: def ? await scenarioModuleHash(def) : '',
         params: room.params,
         seed: room.seed,
         startTick: room.sim.tick,

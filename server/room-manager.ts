@@ -1,9 +1,12 @@
 // The process's rooms: the default room, rooms created on demand from a scenario, lookup by id, the rooms limit,
-// and closing a room once it has been empty for a grace period (never the default room).
+// and closing a room once it has been empty for a grace period (never the default room). Rooms run on this thread, or
+// wherever a RoomHost opens them (the room workers).
 import type { Clock, TimerHandle } from '../shared/clock.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
+import type { HostedRoom } from './hosted-room.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
+import { openRoom } from './open-room.ts';
 import { Room, RoomError, type RoomInfo, type RoomRecorder, type RoomSimulation } from './room.ts';
 
 /** The id of the room that always exists. */
@@ -37,6 +40,14 @@ export interface RoomFactory {
   hasScenario(scenario: string): boolean;
 }
 
+/** A room to open: what a RoomHost is asked for. */
+export interface RoomSpec {
+  id: string;
+  scenario: string;
+  params: Readonly<Record<string, number>>;
+  seed: number | string;
+}
+
 /** Fleet-wide room ids (server/fleet/): an id is claimed before its room opens and given back when it closes. */
 export interface RoomDirectory {
   /** Resolves once this process holds `id`; rejects with a RoomError (a RoomMovedError when another server has it). */
@@ -47,6 +58,11 @@ export interface RoomDirectory {
   locate(id: string): Promise<void>;
   /** The room `id` (claimed before) is open now: the fleet may list it. */
   opened(id: string): void;
+}
+
+/** Opens rooms somewhere other than this thread (the room workers); throws RoomError when it cannot. */
+export interface RoomHost {
+  open(spec: RoomSpec): Promise<HostedRoom>;
 }
 
 /** Options of RoomManager. */
@@ -69,6 +85,8 @@ export interface RoomManagerOptions {
   maxCatchUpTicks?: number;
   maxInputLeadTicks?: number;
   pauseWhenEmpty?: boolean;
+  /** Where rooms are opened; default: on this thread through `factory`. */
+  host?: RoomHost | null;
   /** With a fleet: where room ids are claimed fleet-wide (the default room is each process's own, never claimed). */
   directory?: RoomDirectory;
 }
@@ -83,10 +101,10 @@ export interface RoomRequest {
 /** Owns every room of the process. */
 export class RoomManager {
   private readonly opts: RoomManagerOptions;
-  private readonly rooms = new Map<string, Room>();
-  private readonly creating = new Map<string, Promise<Room>>();
+  private readonly rooms = new Map<string, HostedRoom>();
+  private readonly creating = new Map<string, Promise<HostedRoom>>();
   private readonly emptyTimers = new Map<string, TimerHandle>();
-  private readonly openedListeners = new Set<(room: Room) => void>();
+  private readonly openedListeners = new Set<(room: HostedRoom) => void>();
   private nextRoomNumber = 1;
   private closing = false;
 
@@ -95,23 +113,34 @@ export class RoomManager {
   }
 
   /** Creates the default room. */
-  async start(): Promise<Room> {
+  async start(): Promise<HostedRoom> {
     return this.create(DEFAULT_ROOM_ID, this.opts.defaultScenario, this.opts.defaultParams ?? {});
   }
 
   /** Calls `fn` with every room that opens from now on (the Agones lifecycle watches players through it). */
-  onRoomOpened(fn: (room: Room) => void): () => void {
+  onRoomOpened(fn: (room: HostedRoom) => void): () => void {
     this.openedListeners.add(fn);
     return () => this.openedListeners.delete(fn);
   }
 
   /** The room with this id, if open. */
-  get(id: string): Room | undefined {
+  get(id: string): HostedRoom | undefined {
     return this.rooms.get(id);
   }
 
+  /** The room with this id when it runs on this thread (tests, bench and tools that reach into a room). */
+  local(id: string): Room | undefined {
+    const room = this.rooms.get(id);
+    return room instanceof Room ? room : undefined;
+  }
+
+  /** Every open room that runs on this thread, in all() order. */
+  localRooms(): Room[] {
+    return this.all().filter((r): r is Room => r instanceof Room);
+  }
+
   /** Every open room, default first, then by id. */
-  all(): Room[] {
+  all(): HostedRoom[] {
     return [...this.rooms.values()].sort((a, b) => (a.id === DEFAULT_ROOM_ID ? -1 : b.id === DEFAULT_ROOM_ID ? 1 : a.id < b.id ? -1 : a.id > b.id ? 1 : 0));
   }
 
@@ -132,7 +161,7 @@ export class RoomManager {
    * itself names a scenario); a new room with a fresh id from a scenario alone; otherwise the default room.
    * Throws RoomError when it cannot.
    */
-  async resolve(req: RoomRequest): Promise<Room> {
+  async resolve(req: RoomRequest): Promise<HostedRoom> {
     if (this.closing) throw new RoomError(ErrorCode.Internal, 'the server is shutting down');
     if (req.roomId !== undefined) {
       if (!ROOM_ID_RE.test(req.roomId)) throw new RoomError(ErrorCode.BadMessage, `room id must match ${ROOM_ID_RE}, got ${JSON.stringify(req.roomId)}`);
@@ -172,7 +201,7 @@ export class RoomManager {
   }
 
   /** Creates a room (shared by concurrent requests for the same id). Throws RoomError for limits and bad scenarios. */
-  create(id: string, scenario: string, params: Readonly<Record<string, number>>): Promise<Room> {
+  create(id: string, scenario: string, params: Readonly<Record<string, number>>): Promise<HostedRoom> {
     if (this.closing) return Promise.reject(new RoomError(ErrorCode.Internal, 'the server is shutting down'));
     const existing = this.rooms.get(id);
     if (existing) return Promise.resolve(existing);
@@ -188,7 +217,7 @@ export class RoomManager {
     return promise;
   }
 
-  private async build(id: string, scenario: string, params: Readonly<Record<string, number>>): Promise<Room> {
+  private async build(id: string, scenario: string, params: Readonly<Record<string, number>>): Promise<HostedRoom> {
     const directory = id === DEFAULT_ROOM_ID ? undefined : this.opts.directory;
     if (!directory) return this.buildClaimed(id, scenario, params);
     await directory.claim(id);
@@ -203,39 +232,9 @@ export class RoomManager {
     }
   }
 
-  private async buildClaimed(id: string, scenario: string, params: Readonly<Record<string, number>>): Promise<Room> {
+  private async buildClaimed(id: string, scenario: string, params: Readonly<Record<string, number>>): Promise<HostedRoom> {
     const seed = this.opts.seed ?? 1;
-    let built: RoomSimulationBuild;
-    try {
-      built = await this.opts.factory.createSimulation(scenario, params, seed);
-    } catch (error) {
-      throw new RoomError(ErrorCode.BadMessage, `cannot create room ${id}: ${error instanceof Error ? error.message : String(error)}`);
-    }
-    let recorder: RoomRecorder | null = null;
-    try {
-      recorder = (await this.opts.factory.createRecorder?.({ id, scenario, params: built.params, seed, sim: built.sim })) ?? null;
-    } catch (error) {
-      built.sim.destroy();
-      throw new RoomError(ErrorCode.Internal, `cannot start the recording of room ${id}: ${error instanceof Error ? error.message : String(error)}`);
-    }
-    const room = new Room(built.sim, {
-      id,
-      scenarioName: scenario,
-      description: built.description,
-      bounds: built.bounds,
-      params: built.params,
-      seed,
-      clock: this.opts.clock,
-      metrics: this.opts.metrics,
-      logger: this.opts.logger,
-      snapshotRateHz: this.opts.snapshotRateHz,
-      maxClients: this.opts.maxClientsPerRoom,
-      maxBodies: built.maxBodies,
-      maxCatchUpTicks: this.opts.maxCatchUpTicks,
-      maxInputLeadTicks: this.opts.maxInputLeadTicks,
-      pauseWhenEmpty: this.opts.pauseWhenEmpty,
-      recorder,
-    });
+    const room = this.opts.host ? await this.opts.host.open({ id, scenario, params, seed }) : await this.buildHere(id, scenario, params, seed);
     this.rooms.set(id, room);
     this.opts.metrics.rooms.set(this.rooms.size);
     room.onClose(() => {
@@ -248,12 +247,16 @@ export class RoomManager {
       this.armEmptyTimer(room);
     }
     room.start();
-    this.opts.logger.info({ room: id, scenario, params: built.params, recording: recorder !== null }, 'room opened');
+    this.opts.logger.info({ room: id, scenario, params: room.params }, 'room opened');
     for (const fn of this.openedListeners) fn(room);
     return room;
   }
 
-  private armEmptyTimer(room: Room): void {
+  private buildHere(id: string, scenario: string, params: Readonly<Record<string, number>>, seed: number | string): Promise<Room> {
+    return openRoom({ id, scenario, params, seed }, this.opts);
+  }
+
+  private armEmptyTimer(room: HostedRoom): void {
     this.clearEmptyTimer(room.id);
     const graceMs = this.opts.emptyRoomGraceMs ?? 30_000;
     this.emptyTimers.set(

@@ -7,7 +7,9 @@ import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
+import type { HostedRoom, MemberSink, RoomEntry, Seat } from './hosted-room.ts';
 import { InputBuffer, OfferResult } from './input-buffer.ts';
+import { enterRoom } from './local-seat.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
 import { SnapshotFanOut } from './snapshot-fan-out.ts';
@@ -31,6 +33,8 @@ export interface RoomSimulation {
   staticDescriptors(): BodyDescriptor[];
   bodyDescriptor(id: number): BodyDescriptor | undefined | null;
   destroy(): void;
+  /** The simulation's byte checkpoint (for checkpoints in recordings), when it has one. */
+  saveCheckpointBytes?(): Uint8Array;
   /** The world's WASM heap (for /metrics), when the simulation has one. */
   readonly world?: { freeHeapBytes(): number; totalHeapBytes(): number };
 }
@@ -43,6 +47,11 @@ export interface RoomRecorder {
   afterStep(tick: number, hash: () => string): void;
   /** Writes the end record (none when the hash is null: the room failed), flushes and closes. */
   close(finalTick: number, finalHash: string | null): Promise<void>;
+  /**
+   * Calls `send` (the tick's events and frame) once the log holds the tick durably, in tick order; absent: at once.
+   * This is how nothing a client sees can be missing from the log after a crash (--durability tick).
+   */
+  release?(tick: number, send: () => void): void;
 }
 
 /** The world after one snapshot tick, shared by every member's encoder (copies: valid after the tick). */
@@ -51,6 +60,11 @@ export interface WorldFrame {
   tick: number;
   bodies: BodyStates;
   characters: readonly CharacterState[];
+  /**
+   * Descriptors of the frame's dynamic bodies as of its tick, when the frame leaves later than its tick (a durable
+   * recording holds it back until the tick is on disk) and a body spawned in it may be gone by then.
+   */
+  descriptors?: ReadonlyMap<number, BodyDescriptor>;
 }
 
 /** What a room needs from each connected member (the client session implements it). */
@@ -138,7 +152,7 @@ export function heldInput(last: InputCommand): InputCommand {
 }
 
 /** A running room; build it with `new Room(sim, opts)` and call start(). */
-export class Room {
+export class Room implements HostedRoom {
   readonly id: string;
   readonly scenarioName: string;
   readonly description: string;
@@ -155,6 +169,7 @@ export class Room {
   private nextPlayerId = 1;
   private closedReason: string | null = null;
   private snapshotAccumulator = 0;
+  private busySecondsTotal = 0;
   private lastBodyCount = 0;
   // Static bodies the scene was built with: drawn from the welcome, never in snapshots. Statics spawned later
   // (streamed terrain) travel in snapshots instead, so clients already in the room learn about them.
@@ -214,9 +229,19 @@ export class Room {
     return n;
   }
 
+  /** Ids of the players in the room (connected or held). */
+  playerIds(): number[] {
+    return [...this.players.keys()];
+  }
+
   /** Whether a player is in the room (connected or held). */
   hasPlayer(playerId: number): boolean {
     return this.players.has(playerId);
+  }
+
+  /** Wall seconds this room's ticks have taken since it opened (its load on its thread). */
+  get busySeconds(): number {
+    return this.busySecondsTotal;
   }
 
   /** Whether the room has closed. */
@@ -269,6 +294,15 @@ export class Room {
       this.tickClock.start();
     }
     return { playerId, joinTick, firstInputTick };
+  }
+
+  /** Seats a member (a new player, or a held one taken back) with its welcome; rejects with a RoomError when refused. */
+  enter(sink: MemberSink, entry: RoomEntry): Promise<Seat> {
+    try {
+      return Promise.resolve(enterRoom(this, sink, entry, this.opts.metrics));
+    } catch (error) {
+      return Promise.reject(error instanceof Error ? error : new Error(String(error)));
+    }
   }
 
   /** Removes a player; the leave goes into the next tick's record (a join not yet applied is simply dropped). */
@@ -376,36 +410,56 @@ export class Room {
     }
     m.ticks.inc();
     if (this.players.size === 0 && (this.opts.pauseWhenEmpty ?? true) && this.pendingLeaves.length === 0) this.tickClock.stop();
-    this.deliver(tick, events);
+    const send = this.deliver(tick, events);
+    if (this.opts.recorder?.release) this.opts.recorder.release(tick, send);
+    else send();
     for (const fn of this.tickListeners) fn(record, events);
     const seconds = (performance.now() - started) / 1000;
+    this.busySecondsTotal += seconds;
     m.tickDuration.observe(seconds);
     if (seconds > 1 / TICK_RATE_HZ) m.tickOverruns.inc();
   }
 
-  private deliver(tick: number, events: readonly SimEvent[]): void {
+  /** Does the tick's bookkeeping now and returns what sends its events and frame (possibly later, see release). */
+  private deliver(tick: number, events: readonly SimEvent[]): () => void {
     for (const e of events) if (e.type === 'bodyRemoved') this.sceneStatics.delete(e.bodyId); // its id may be reused
-    const members = [...this.players.values()].filter((p): p is Player & { member: RoomMember } => p.member !== null);
-    if (events.length > 0) for (const p of members) this.safely(p, () => p.member.deliverEvents(tick, events));
+    let frame: WorldFrame | null = null;
     this.snapshotAccumulator += this.opts.snapshotRateHz;
-    if (this.snapshotAccumulator + 1e-9 < TICK_RATE_HZ) {
-      return;
+    if (this.snapshotAccumulator + 1e-9 >= TICK_RATE_HZ) {
+      this.snapshotAccumulator -= TICK_RATE_HZ;
+      const bodies = this.sim.readBodyStates();
+      this.lastBodyCount = bodies.count;
+      if (this.heldCount < this.players.size) {
+        frame = {
+          tick,
+          bodies: {
+            count: bodies.count,
+            ids: bodies.ids.slice(0, bodies.count),
+            states: bodies.states.slice(0, bodies.count * BODY_STATE_STRIDE),
+            flags: bodies.flags.slice(0, bodies.count),
+          },
+          characters: this.sim.characters(),
+        };
+        if (this.opts.recorder?.release) frame.descriptors = this.captureDescriptors(frame.bodies);
+      }
     }
-    this.snapshotAccumulator -= TICK_RATE_HZ;
-    const bodies = this.sim.readBodyStates();
-    this.lastBodyCount = bodies.count;
-    if (members.length === 0) return;
-    const frame: WorldFrame = {
-      tick,
-      bodies: {
-        count: bodies.count,
-        ids: bodies.ids.slice(0, bodies.count),
-        states: bodies.states.slice(0, bodies.count * BODY_STATE_STRIDE),
-        flags: bodies.flags.slice(0, bodies.count),
-      },
-      characters: this.sim.characters(),
+    return () => {
+      if (this.closed) return;
+      const members = [...this.players.values()].filter((p): p is Player & { member: RoomMember } => p.member !== null);
+      if (events.length > 0) for (const p of members) this.safely(p, () => p.member.deliverEvents(tick, events));
+      if (frame) for (const p of members) this.safely(p, () => p.member.deliverFrame(frame));
     };
-    for (const p of members) this.safely(p, () => p.member.deliverFrame(frame));
+  }
+
+  private captureDescriptors(bodies: WorldFrame['bodies']): Map<number, BodyDescriptor> {
+    const out = new Map<number, BodyDescriptor>();
+    for (let i = 0; i < bodies.count; i++) {
+      const id = bodies.ids[i];
+      if (this.isSceneStatic(id)) continue;
+      const d = this.sim.bodyDescriptor(id);
+      if (d) out.set(id, d);
+    }
+    return out;
   }
 
   // A member that throws while taking a delivery is removed; the room and the other members carry on.

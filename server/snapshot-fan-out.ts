@@ -71,7 +71,7 @@ export class SnapshotFanOut {
    */
   snapshotFor(encoder: SnapshotEncoder, frame: WorldFrame): MemberSnapshot {
     const work = this.frameWork(frame);
-    const encoded = encoder.encode(work.quantized, (id) => this.source.describe(id), work.shared);
+    const encoded = encoder.encode(work.quantized, (id) => work.frame.descriptors?.get(id) ?? this.source.describe(id), work.shared);
     let key = `${encoded.baselineTick ?? -1}`;
     for (const d of encoded.descriptors) key += `,${d.id}`;
     let message = work.messages.get(key);

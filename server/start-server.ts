@@ -23,8 +23,10 @@ import { createTcpGate, Tarpit, type TarpitOptions } from './tcp-gate.ts';
 import { createLogger, flushLogger, type Logger } from './logger.ts';
 import { createMetrics, type ServerMetrics } from './metrics.ts';
 import { createRoomFactory, type ScenarioSource } from './room-factory.ts';
+import type { DurabilityOptions } from './recorder.ts';
 import { createStaticHandler } from './static-files.ts';
 import { attachWsGateway } from './ws-gateway.ts';
+import { WorkerPool } from './workers/worker-pool.ts';
 
 const REPO_ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 /** Where the built browser client is served from by default. */
@@ -46,6 +48,10 @@ export interface StartServerOptions extends AccessOptions {
   recordDir?: string | null;
   /** A state hash record in recordings every N ticks (default 60; 1 checks every tick on replay). */
   recordHashEveryTicks?: number;
+  /** When recorded records reach the disk (--durability). Default tick. */
+  durability?: DurabilityOptions;
+  /** A checkpoint in recordings every N seconds of play (0: none). Default 10. */
+  checkpointEverySeconds?: number;
   /** Most clients per room. Default 32. */
   maxClients?: number;
   maxConnections?: number;
@@ -73,6 +79,10 @@ export interface StartServerOptions extends AccessOptions {
   tarpit?: TarpitOptions;
   /** Serve HTTPS and WSS with this certificate chain and private key (PEM). Default: plain HTTP and WS. */
   tls?: { cert: string | Buffer; key: string | Buffer };
+  /** Room worker threads to run the rooms in (0: every room on the main thread, as before). Default 0. */
+  roomWorkers?: number;
+  /** Modules exporting ScenarioDefinitions the room workers offer beside the registry (file URLs; tests' own scenes). */
+  workerScenarioModules?: readonly string[];
   /** Join a fleet of servers through a Redis directory (docs/deploy.md). Default: a single process. */
   fleet?: FleetOptions;
   /** Run as an Agones GameServer through the SDK sidecar (docs/deploy.md). Default: not. */
@@ -137,8 +147,28 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   const tarpit = new Tarpit(clock, opts.tarpit);
   const fleet = createFleetDirectory(opts.fleet, clock, logger);
 
+  const roomWorkers = opts.roomWorkers ?? 0;
+  if (!Number.isInteger(roomWorkers) || roomWorkers < 0) throw new Error(`room workers must be a whole number ≥ 0, got ${roomWorkers}`);
+  const workers =
+    roomWorkers === 0
+      ? null
+      : await WorkerPool.start({
+          count: roomWorkers,
+          config: {
+            snapshotRateHz: opts.snapshotRateHz ?? 30,
+            maxClientsPerRoom: opts.maxClients ?? 32,
+            recordDir: opts.recordDir ?? null,
+            recordHashEveryTicks: opts.recordHashEveryTicks,
+            durability: opts.durability,
+            checkpointEverySeconds: opts.checkpointEverySeconds,
+          },
+          scenarioModules: opts.workerScenarioModules,
+          logLevel: logger.level,
+          logger,
+        });
   const game = await GameServer.create({
-    factory: createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null, hashEveryTicks: opts.recordHashEveryTicks }),
+    workers,
+    factory: createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null, hashEveryTicks: opts.recordHashEveryTicks, durability: opts.durability, checkpointEverySeconds: opts.checkpointEverySeconds }),
     defaultScenario: scenarioName,
     defaultParams: opts.params,
     seed: opts.seed,

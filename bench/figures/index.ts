@@ -63,6 +63,14 @@ export const FIGURES: readonly FigureSpec[] = Object.freeze([
     module: 'figures/determinism-cost.ts',
   },
   {
+    name: 'durability',
+    title: 'durability',
+    detailKey: 'durability',
+    headlineKeys: ['durabilityTickP50Ms', 'durabilityTickP99Ms', 'durabilityIntervalP50Ms', 'durabilityIntervalP99Ms', 'durabilityOffP50Ms', 'durabilityOffP99Ms', 'logBytesPerMinute'],
+    timeLimitMs: (quick: boolean) => (quick ? min(3) : min(5)),
+    module: 'figures/durability.ts',
+  },
+  {
     name: 'engine-peer',
     title: 'engine peer',
     detailKey: 'enginePeer',
@@ -115,6 +123,13 @@ export const HEADLINE_KEYS: readonly string[] = [
   'hashMsPerTick1000',
   'checkpointSaveMs1000',
   'checkpointRestoreMs1000',
+  'durabilityTickP50Ms',
+  'durabilityTickP99Ms',
+  'durabilityIntervalP50Ms',
+  'durabilityIntervalP99Ms',
+  'durabilityOffP50Ms',
+  'durabilityOffP99Ms',
+  'logBytesPerMinute',
   'startupMs',
   'redirectWelcomeMs',
 ];

@@ -32,7 +32,7 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
   const intervalMs = 300;
   const server = await startServer({ port: 0, host: '127.0.0.1', scenario: DEFAULT_SCENARIO, snapshotRateHz: SNAPSHOT_RATE_HZ, logger: silentLogger(), metrics: createMetrics({ processMetrics: false }) });
   try {
-    const room = server.game.rooms.get('default');
+    const room = server.game.rooms.local('default');
     if (!room) throw new Error('input latency: the server has no default room');
     // First arrival of each (player, tick) input: the room's tick counter then (ticks applied so far), the time, and
     // whether any copy was stored. Messages repeat the last few inputs, so later copies are not arrivals (but one of

@@ -13,6 +13,7 @@ import type { ConnectionHandlers, ServerConnection } from '../../server/connecti
 import { GameServer } from '../../server/game-server.ts';
 import { installedJoltVersion, LogWriter } from '../../server/log/index.ts';
 import { silentLogger } from '../../server/logger.ts';
+import { DeliveringMember } from '../../server/member-delivery.ts';
 import { createMetrics } from '../../server/metrics.ts';
 import type { Room, RoomRecorder } from '../../server/room.ts';
 import type { RoomFactory, RoomSimulationBuild } from '../../server/room-manager.ts';
@@ -172,6 +173,32 @@ function timeCharacterMoves(parts: { current: TickParts }): () => void {
   };
 }
 
+/** Times every DeliveringMember's frame and event deliveries (encoding and the hand-off to the session's socket). */
+function timeDeliveries(parts: { current: TickParts }): () => void {
+  const proto = DeliveringMember.prototype;
+  const { deliverFrame, deliverEvents } = proto;
+  proto.deliverFrame = function timedFrame(this: DeliveringMember, ...args: Parameters<typeof deliverFrame>): void {
+    const t0 = performance.now();
+    try {
+      deliverFrame.apply(this, args);
+    } finally {
+      parts.current.snapshots += performance.now() - t0;
+    }
+  };
+  proto.deliverEvents = function timedEvents(this: DeliveringMember, ...args: Parameters<typeof deliverEvents>): void {
+    const t0 = performance.now();
+    try {
+      deliverEvents.apply(this, args);
+    } finally {
+      parts.current.events += performance.now() - t0;
+    }
+  };
+  return () => {
+    proto.deliverFrame = deliverFrame;
+    proto.deliverEvents = deliverEvents;
+  };
+}
+
 /**
  * A recorder like the server's --record one: every tick record and a hash every N ticks. A log starts at tick 0, and
  * the rig's room may start from a warmed-up checkpoint, so ticks are written relative to `startTick` (same bytes
@@ -225,13 +252,14 @@ export async function startServerRig(opts: ServerRigOptions): Promise<ServerRig>
     maxClientsPerRoom: Math.max(32, opts.clients),
     maxConnections: Math.max(256, opts.clients),
   });
-  const room = server.rooms.all()[0];
+  const room = server.rooms.localRooms()[0];
   const theSim = sim as Simulation | null;
   if (!theSim || !room) throw new Error('server rig: the default room did not open');
   timeMethod(theSim, 'step', parts, 'simStep');
   timeMethod(theSim.world, 'stepFixed', parts, 'physicsStep');
   timeMethod(theSim, 'stateHash', parts, 'stateHash');
   const untimeCharacters = timeCharacterMoves(parts);
+  const untimeDeliveries = timeDeliveries(parts);
 
   const clients: RigClient[] = [];
   for (let i = 0; i < opts.clients; i++) {
@@ -241,8 +269,6 @@ export async function startServerRig(opts: ServerRigOptions): Promise<ServerRig>
     link.deliver(encodeClientMessage({ type: 'hello', version: PROTOCOL_VERSION, name: `bot-${i + 1}`, room: null }));
     for (let turn = 0; session.player === 0 && turn < 1000; turn++) await new Promise((r) => setImmediate(r));
     if (session.player === 0) throw new Error(`server rig: client ${i + 1} was not welcomed`);
-    timeMethod(session, 'deliverFrame', parts, 'snapshots');
-    timeMethod(session, 'deliverEvents', parts, 'events');
     const welcome = link.outbox.length > 0 ? decodeServerMessage(link.outbox[0]) : null;
     if (!welcome?.ok || welcome.message.type !== 'welcome') throw new Error(`server rig: client ${i + 1} got no welcome first`);
     clients.push({
@@ -326,6 +352,7 @@ export async function startServerRig(opts: ServerRigOptions): Promise<ServerRig>
     welcomeBytes: () => clients[0]?.welcomeBytes ?? 0,
     async close(): Promise<void> {
       untimeCharacters();
+      untimeDeliveries();
       await server.close('bench done');
       await rm(logDir, { recursive: true, force: true });
     },

@@ -63,7 +63,7 @@ function instrument(room: Room): void {
     log.cpuMs.push((cpu.user + cpu.system) / 1000);
   };
 }
-const defaultRoom = server.game.rooms.get('default');
+const defaultRoom = server.game.rooms.local('default');
 if (!defaultRoom) throw new Error('bench-server: no default room');
 instrument(defaultRoom);
 
@@ -100,7 +100,9 @@ async function openRooms(n: number): Promise<string[]> {
     const id = `r${i}`;
     ids.push(id);
     if (server.game.rooms.get(id)) continue;
-    instrument(await server.game.rooms.create(id, scenario, params));
+    await server.game.rooms.create(id, scenario, params);
+    const room = server.game.rooms.local(id);
+    if (room) instrument(room);
   }
   return ids;
 }

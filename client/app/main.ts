@@ -5,7 +5,8 @@ import { Renderer } from '../render/renderer.ts';
 import { GameLoop } from './game-loop.ts';
 import { Hud } from './hud.ts';
 import { InputController } from './input-controller.ts';
-import { hideMessage, showMessage } from './overlay.ts';
+import { closedMessage } from './closed-messages.ts';
+import { hideMessage, showMessage, type MessageAction } from './overlay.ts';
 import { openSession } from './session.ts';
 import type { NetSession, SessionWelcome } from './session-types.ts';
 import { fetchLobby, showStartScreen } from './start-screen.ts';
@@ -76,13 +77,22 @@ function hookBodies(v: SnapshotView): HookBody[] {
   return out;
 }
 
-function fail(title: string, detail: string, action?: { label: string; run: () => void }): void {
+function fail(title: string, detail: string, actions: readonly MessageAction[] = [reload, backToRooms]): void {
   page.phase = 'error';
   page.error = `${title}: ${detail}`;
-  showMessage(title, detail, 'error', action);
+  showMessage(title, detail, 'error', actions);
 }
 
-const reload = { label: 'Try again', run: () => location.reload() };
+const reload: MessageAction = { label: 'Try again', run: () => location.reload() };
+// The lobby: the page without ?room=, keeping the other parameters (name, hud).
+const backToRooms: MessageAction = {
+  label: 'Back to rooms',
+  run: () => {
+    const url = new URL(location.href);
+    url.searchParams.delete('room');
+    location.assign(url.href);
+  },
+};
 
 async function boot(): Promise<void> {
   installTestHook(hookState);
@@ -91,12 +101,12 @@ async function boot(): Promise<void> {
     page.renderer = await Renderer.create(canvas);
     page.gpuReadyMs = performance.now();
   } catch (err) {
-    if (err instanceof WebGpuUnavailableError) fail('WebGPU is not available', err.message);
-    else fail('The renderer failed to start', (err as Error).message);
+    if (err instanceof WebGpuUnavailableError) fail('WebGPU is not available', err.message, [reload]);
+    else fail('The renderer failed to start', (err as Error).message, [reload]);
     return;
   }
   page.renderer.lost.then((reason) => {
-    if (page.phase !== 'closed') fail('The GPU device was lost', `${reason}. Reload the page to start again.`, reload);
+    if (page.phase !== 'closed') fail('The GPU device was lost', `${reason}. Reload the page to start again.`);
     page.loop?.stop();
   });
 
@@ -108,7 +118,7 @@ async function boot(): Promise<void> {
     try {
       lobby = await fetchLobby(location.origin);
     } catch (err) {
-      fail('Server unreachable', (err as Error).message, reload);
+      fail('Server unreachable', (err as Error).message, [reload]);
       return;
     }
     room = (await showStartScreen(byId('start'), lobby)).room;
@@ -137,7 +147,7 @@ function join(room: string | null, name: string): void {
       hideMessage();
       world.reset(welcome.staticBodies, welcome.dynamicBodies);
       page.loop?.stop();
-      const loop = new GameLoop({ renderer, world, session: page.session!, input, hud, welcome, onFatal: (err) => fail('Rendering failed', err.message, reload) });
+      const loop = new GameLoop({ renderer, world, session: page.session!, input, hud, welcome, onFatal: (err) => fail('Rendering failed', err.message) });
       page.loop = loop;
       // ?hud=0 starts with the HUD and help hidden (clean screenshots); H toggles them.
       const showHud = new URLSearchParams(location.search).get('hud') !== '0';
@@ -170,20 +180,12 @@ function join(room: string | null, name: string): void {
       page.connected = false;
       page.loop?.stop();
       input.detach();
-      fail(closedTitle(reason), detail, reload);
+      const m = closedMessage(reason);
+      fail(m.title, `${detail}\n${m.hint}`, m.retry ? [reload, backToRooms] : [backToRooms]);
       page.phase = 'closed';
     },
   });
   bindKeys(input);
-}
-
-function closedTitle(reason: string): string {
-  if (reason === 'unreachable') return 'Server unreachable';
-  if (reason === 'room-not-found') return 'No such room';
-  if (reason === 'room-full' || reason === 'server-full') return 'The room is full';
-  if (reason === 'server-shutdown') return 'The server shut down';
-  if (reason === 'bad-request') return 'Cannot join';
-  return 'Disconnected';
 }
 
 function bindKeys(input: InputController): void {
@@ -208,5 +210,5 @@ function bindKeys(input: InputController): void {
 
 boot().catch((err: unknown) => {
   console.error(err);
-  fail('The client failed to start', (err as Error).message, reload);
+  fail('The client failed to start', (err as Error).message);
 });

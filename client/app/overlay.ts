@@ -4,8 +4,14 @@
 /** How serious a message is (colours the box). */
 export type MessageKind = 'error' | 'info';
 
-/** Shows a message box over the scene, replacing any previous one. */
-export function showMessage(title: string, detail: string, kind: MessageKind = 'error', action?: { label: string; run: () => void }): void {
+/** A button under a message. */
+export interface MessageAction {
+  label: string;
+  run: () => void;
+}
+
+/** Shows a message box over the scene, replacing any previous one, with its buttons in order. */
+export function showMessage(title: string, detail: string, kind: MessageKind = 'error', action?: MessageAction | readonly MessageAction[]): void {
   const box = document.getElementById('message');
   if (!box) return;
   box.replaceChildren();
@@ -15,12 +21,18 @@ export function showMessage(title: string, detail: string, kind: MessageKind = '
   const p = document.createElement('p');
   p.textContent = detail;
   box.append(h, p);
-  if (action) {
-    const button = document.createElement('button');
-    button.type = 'button';
-    button.textContent = action.label;
-    button.addEventListener('click', action.run);
-    box.append(button);
+  const actions = action === undefined ? [] : Array.isArray(action) ? (action as readonly MessageAction[]) : [action as MessageAction];
+  if (actions.length > 0) {
+    const row = document.createElement('div');
+    row.className = 'actions';
+    for (const a of actions) {
+      const button = document.createElement('button');
+      button.type = 'button';
+      button.textContent = a.label;
+      button.addEventListener('click', a.run);
+      row.append(button);
+    }
+    box.append(row);
   }
   box.hidden = false;
 }

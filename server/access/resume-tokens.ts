@@ -5,7 +5,7 @@
 import { createHash, randomBytes } from 'node:crypto';
 import type { Clock, TimerHandle } from '../../shared/clock.ts';
 import type { Logger } from '../logger.ts';
-import type { Room } from '../room.ts';
+import type { HostedRoom as Room } from '../hosted-room.ts';
 
 /** Default grace window. */
 export const DEFAULT_RESUME_GRACE_MS = 30_000;

@@ -4,7 +4,7 @@
 // SDK calls never run in the tick and never throw out of a timer: failures are logged once and retried or dropped.
 import type { Clock, TimerHandle } from '../../shared/clock.ts';
 import type { Logger } from '../logger.ts';
-import type { Room } from '../room.ts';
+import type { HostedRoom } from '../hosted-room.ts';
 import { DEFAULT_ROOM_ID } from '../room-manager.ts';
 
 /** The part of the SDK's AgonesSDK this lifecycle uses (its bundled typings omit `beta`). */
@@ -45,9 +45,9 @@ export function gameServerUrl(gs: AgonesGameServer, secure: boolean): string | n
 
 /** The rooms the lifecycle watches (RoomManager). */
 export interface WatchedRooms {
-  all(): Room[];
+  all(): HostedRoom[];
   clientCount(): number;
-  onRoomOpened(fn: (room: Room) => void): () => void;
+  onRoomOpened(fn: (room: HostedRoom) => void): () => void;
 }
 
 /** Options of AgonesLifecycle. */
@@ -101,8 +101,9 @@ export class AgonesLifecycle {
   private publishTimer: TimerHandle | null = null;
   private drainTimer: TimerHandle | null = null;
   private readonly unsubscribe: Array<() => void> = [];
-  private publishing = false;
+  private inFlight: Promise<void> | null = null;
   private publishAgain = false;
+  private stopping = false;
   private published = { players: -1, rooms: new Set<string>(), roomCount: -1 };
   private countsAndLists = true;
   private readonly warned = new Set<string>();
@@ -174,7 +175,7 @@ export class AgonesLifecycle {
       (error) => this.warnOnce('WatchGameServer', error),
     );
     client.beta.setCounterCapacity(AgonesKeys.players, this.opts.maxPlayers).catch((error: unknown) => this.countsOff(error));
-    const watch = (room: Room): void => {
+    const watch = (room: HostedRoom): void => {
       this.unsubscribe.push(room.onEmptyChange(() => this.changed()));
       this.unsubscribe.push(room.onClose(() => this.opts.clock.setTimer(0, () => this.changed())));
       this.changed();
@@ -224,55 +225,59 @@ export class AgonesLifecycle {
     if (this.publishTimer === null) {
       this.publishTimer = this.opts.clock.setTimer(50, () => {
         this.publishTimer = null;
-        void this.publish();
+        this.publish();
       });
     }
   }
 
   /** Brings labels, the players counter and the rooms list up to date (one update in flight at a time). */
-  private async publish(): Promise<void> {
-    if (this.publishing) {
+  private publish(): void {
+    if (this.inFlight) {
       this.publishAgain = true;
       return;
     }
-    this.publishing = true;
-    try {
-      const { client } = this.opts;
-      const players = this.opts.rooms.clientCount();
-      const rooms = new Set(this.opts.rooms.all().map((r) => r.id));
-      if (players !== this.published.players) {
-        await client.setLabel(AgonesKeys.players, String(players)).catch((error: unknown) => this.warnOnce('SetLabel', error));
-        if (this.countsAndLists) await client.beta.setCounterCount(AgonesKeys.players, players).catch((error: unknown) => this.countsOff(error));
-        this.published.players = players;
-      }
-      if (rooms.size !== this.published.roomCount) {
-        await client.setLabel(AgonesKeys.rooms, String(rooms.size)).catch((error: unknown) => this.warnOnce('SetLabel', error));
-        this.published.roomCount = rooms.size;
-      }
-      for (const id of [...rooms].sort()) {
-        if (this.published.rooms.has(id) || !this.countsAndLists) continue;
-        await client.beta.appendListValue(AgonesKeys.rooms, id).catch((error: unknown) => this.countsOff(error));
-        this.published.rooms.add(id);
-      }
-      for (const id of [...this.published.rooms].sort()) {
-        if (rooms.has(id) || !this.countsAndLists) continue;
-        await client.beta.deleteListValue(AgonesKeys.rooms, id).catch((error: unknown) => this.countsOff(error));
-        this.published.rooms.delete(id);
-      }
-    } finally {
-      this.publishing = false;
-      if (this.publishAgain && !this.stopped) {
+    this.inFlight = this.publishOnce().finally(() => {
+      this.inFlight = null;
+      if (this.publishAgain && !this.stopping) {
         this.publishAgain = false;
-        void this.publish();
+        this.publish();
       }
+    });
+  }
+
+  private async publishOnce(): Promise<void> {
+    const { client } = this.opts;
+    // Each step checks `stopping`: nothing is published after Shutdown.
+    const players = this.opts.rooms.clientCount();
+    const rooms = new Set(this.opts.rooms.all().map((r) => r.id));
+    if (players !== this.published.players && !this.stopping) {
+      await client.setLabel(AgonesKeys.players, String(players)).catch((error: unknown) => this.warnOnce('SetLabel', error));
+      if (this.countsAndLists && !this.stopping) await client.beta.setCounterCount(AgonesKeys.players, players).catch((error: unknown) => this.countsOff(error));
+      this.published.players = players;
+    }
+    if (rooms.size !== this.published.roomCount && !this.stopping) {
+      await client.setLabel(AgonesKeys.rooms, String(rooms.size)).catch((error: unknown) => this.warnOnce('SetLabel', error));
+      this.published.roomCount = rooms.size;
+    }
+    for (const id of [...rooms].sort()) {
+      if (this.published.rooms.has(id) || !this.countsAndLists || this.stopping) continue;
+      await client.beta.appendListValue(AgonesKeys.rooms, id).catch((error: unknown) => this.countsOff(error));
+      this.published.rooms.add(id);
+    }
+    for (const id of [...this.published.rooms].sort()) {
+      if (rooms.has(id) || !this.countsAndLists || this.stopping) continue;
+      await client.beta.deleteListValue(AgonesKeys.rooms, id).catch((error: unknown) => this.countsOff(error));
+      this.published.rooms.delete(id);
     }
   }
 
   /** Tells Agones the server is done (Shutdown) and closes the SDK link; idempotent. Never throws. */
   shutdown(reason: string): Promise<void> {
     this.stopped ??= (async () => {
+      this.stopping = true;
       for (const timer of [this.healthTimer, this.publishTimer, this.drainTimer]) if (timer) this.opts.clock.clearTimer(timer);
       for (const off of this.unsubscribe.splice(0)) off();
+      await this.inFlight;
       try {
         await this.opts.client.shutdown();
         this.opts.logger.info({ reason }, 'agones: Shutdown');

@@ -6,8 +6,8 @@ import { writeFrame } from './frame.ts';
 import { LOG_FORMAT_VERSION, LOG_MAGIC, PRELUDE_BYTES, RecordType, type LogHeader } from './log-format.ts';
 import { encodeHeader, writeCheckpointHead, writeEndPayload, writeHashPayload, writeTickPayload } from './record-codec.ts';
 
-/** What a writer must say about a session; format version is filled in. */
-export type LogHeaderInit = Omit<LogHeader, 'formatVersion'>;
+/** What a writer must say about a session; format version is filled in, a missing scenarioHash is ''. */
+export type LogHeaderInit = Omit<LogHeader, 'formatVersion' | 'scenarioHash'> & { scenarioHash?: string };
 
 /**
  * Encodes one log: start() once, then tick/hash/checkpoint records, then end(). Each record can be appended to a
@@ -25,7 +25,7 @@ export class LogEncoder {
 
   constructor(init: LogHeaderInit) {
     if (init === null || typeof init !== 'object') throw new Error('log header must be an object');
-    this.header = { formatVersion: LOG_FORMAT_VERSION, ...init, params: { ...init.params } };
+    this.header = { formatVersion: LOG_FORMAT_VERSION, ...init, scenarioHash: init.scenarioHash ?? '', params: { ...init.params } };
     const out = new ByteWriter(256);
     out.raw(LOG_MAGIC);
     out.u16(LOG_FORMAT_VERSION);

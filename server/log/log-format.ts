@@ -5,8 +5,10 @@ import type { TickInputRecord } from '../../shared/sim/types.ts';
 
 /** File magic: 0x89 then ASCII "TAOSLOG" (the high byte catches 7-bit transfers and text files). */
 export const LOG_MAGIC: Readonly<Uint8Array> = Uint8Array.of(0x89, 0x54, 0x41, 0x4f, 0x53, 0x4c, 0x4f, 0x47);
-/** The format version this build writes and reads. */
-export const LOG_FORMAT_VERSION = 1;
+/** The format version this build writes (it reads this one and every older one in READABLE_LOG_VERSIONS). */
+export const LOG_FORMAT_VERSION = 2;
+/** Versions this build reads: 1 lacks the scenario module hash (read as ''). */
+export const READABLE_LOG_VERSIONS: readonly number[] = [1, 2];
 /** Bytes before the first record: magic (8), version u16, flags u16 (must be 0). */
 export const PRELUDE_BYTES = 12;
 
@@ -49,6 +51,8 @@ export interface LogHeader {
   /** jolt-physics package version that recorded the log (replays on another version may diverge). */
   joltVersion: string;
   scenario: string;
+  /** Content hash of the scenario's module (`sha256:<hex>`), '' for built-in scenarios (and version-1 logs). */
+  scenarioHash: string;
   /** Scenario parameters as given (sorted by name when written). */
   params: Record<string, number>;
   seed: number | string;

@@ -3,7 +3,7 @@
 // nothing after the end record). Used by the streaming file reader and the in-memory reader.
 import { PayloadError } from '../../shared/byte-io.ts';
 import { scanFrame } from './frame.ts';
-import { LOG_FORMAT_VERSION, LOG_MAGIC, LogCorruptError, LogFormatError, PRELUDE_BYTES, RECORD_TYPE_NAMES, RecordType, type LogEntry, type LogHeader, type RecordTypeCode } from './log-format.ts';
+import { LOG_MAGIC, READABLE_LOG_VERSIONS, LogCorruptError, LogFormatError, PRELUDE_BYTES, RECORD_TYPE_NAMES, RecordType, type LogEntry, type LogHeader, type RecordTypeCode } from './log-format.ts';
 import { decodeCheckpoint, decodeEnd, decodeHash, decodeHeader, decodeTick } from './record-codec.ts';
 
 /** Checks the 12-byte prelude and returns the format version; throws LogFormatError on anything else. */
@@ -16,8 +16,8 @@ export function checkPrelude(bytes: Uint8Array, available: number, source: strin
     throw new LogFormatError(available === 0 ? `${source} is empty` : `${source} is truncated inside its ${PRELUDE_BYTES}-byte prelude (${available} bytes)`);
   }
   const version = bytes[8] | (bytes[9] << 8);
-  if (version !== LOG_FORMAT_VERSION) {
-    throw new LogFormatError(`${source} has input log format version ${version}; this build reads version ${LOG_FORMAT_VERSION}`);
+  if (!READABLE_LOG_VERSIONS.includes(version)) {
+    throw new LogFormatError(`${source} has input log format version ${version}; this build reads versions ${READABLE_LOG_VERSIONS.join(' and ')}`);
   }
   const flags = bytes[10] | (bytes[11] << 8);
   if (flags !== 0) throw new LogFormatError(`${source} sets unknown prelude flags 0x${flags.toString(16)}`);

@@ -83,6 +83,34 @@ export class LogWriter {
     return writer;
   }
 
+  /**
+   * Reopens an unterminated log to go on appending after its last whole record: the file is cut to `validBytes`
+   * (dropping a partial or damaged tail the caller has set aside) and the next tick record must be `ticks`.
+   */
+  static async continue(path: string, header: LogHeaderInit, at: { ticks: number; validBytes: number }, opts: LogWriterOptions = {}): Promise<LogWriter> {
+    const encoder = new LogEncoder(header);
+    encoder.ticks = at.ticks;
+    let fh: FileHandle;
+    try {
+      fh = await open(path, 'a');
+    } catch (err) {
+      throw new Error(`cannot reopen input log ${path}: ${(err as Error).message}`);
+    }
+    const writer = new LogWriter(path, fh, encoder, opts);
+    try {
+      const { size } = await fh.stat();
+      if (size < at.validBytes) throw new Error(`input log ${path} has ${size} bytes, fewer than the ${at.validBytes} it was read with`);
+      if (size > at.validBytes) await fh.truncate(at.validBytes);
+      await fh.datasync();
+    } catch (err) {
+      await fh.close().catch(() => undefined);
+      throw err;
+    }
+    writer.bytesAppended = at.validBytes;
+    writer.bytesWritten = at.validBytes;
+    return writer;
+  }
+
   /** The header as written. */
   get header(): LogHeader {
     return this.encoder.header;

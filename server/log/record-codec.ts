@@ -57,6 +57,7 @@ export function encodeHeader(h: LogHeader): Uint8Array {
   w.uvarint(checkCount(h.hashEveryTicks, 'hashEveryTicks', 0xffffffff));
   w.uvarint(checkCount(h.checkpointEveryTicks, 'checkpointEveryTicks', 0xffffffff));
   w.varintPrefixedString(checkHeaderString(h.createdBy, 'createdBy'));
+  w.varintPrefixedString(checkHeaderString(h.scenarioHash, 'scenarioHash'));
   return w.finish();
 }
 
@@ -92,8 +93,9 @@ export function decodeHeader(payload: Uint8Array, formatVersion: number): LogHea
   const hashEveryTicks = r.uvarint('hash interval');
   const checkpointEveryTicks = r.uvarint('checkpoint interval');
   const createdBy = r.varintPrefixedString(MAX_HEADER_STRING_BYTES, 'createdBy');
+  const scenarioHash = formatVersion >= 2 ? r.varintPrefixedString(MAX_HEADER_STRING_BYTES, 'scenarioHash') : '';
   r.expectEnd('header');
-  return { formatVersion, joltVersion, scenario, params, seed, tickRateHz, hashEveryTicks, checkpointEveryTicks, createdBy };
+  return { formatVersion, joltVersion, scenario, scenarioHash, params, seed, tickRateHz, hashEveryTicks, checkpointEveryTicks, createdBy };
 }
 
 function checkPlayerId(id: unknown, where: string): number {

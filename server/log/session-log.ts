@@ -16,6 +16,8 @@ export interface SessionLogOptions extends LogWriterOptions {
   checkpointEveryTicks?: number;
   /** Names the program in the header. */
   createdBy?: string;
+  /** Content hash of the scenario's module (see server/scenario-module.ts); default '' (a built-in scenario). */
+  scenarioHash?: string;
 }
 
 function interval(value: number | undefined, fallback: number, name: string): number {
@@ -48,6 +50,7 @@ export class SessionLog {
       {
         joltVersion: installedJoltVersion(),
         scenario: sim.scenarioName,
+        scenarioHash: opts.scenarioHash ?? '',
         params: { ...sim.params },
         seed: sim.seed,
         tickRateHz: TICK_RATE_HZ,

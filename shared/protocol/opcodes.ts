@@ -82,10 +82,8 @@ export const ByeReason = {
 } as const;
 export type ByeReason = (typeof ByeReason)[keyof typeof ByeReason];
 
-/** Bye reasons after which trying again later can succeed (restarts, transient overload). */
-export const RECONNECTABLE_BYE_REASONS: ReadonlySet<string> = new Set<string>([
-  ByeReason.ServerShutdown,
-  ByeReason.Timeout,
-  ByeReason.ServerFull,
-  ByeReason.RoomFull,
-]);
+/**
+ * Bye reasons after which reconnecting at once can succeed: only a timeout (the link went quiet). A shutdown, a full
+ * room or server and every refusal end the client with the server's reason; the application decides when to try again.
+ */
+export const RECONNECTABLE_BYE_REASONS: ReadonlySet<string> = new Set<string>([ByeReason.Timeout]);

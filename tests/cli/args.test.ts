@@ -33,8 +33,8 @@ const usageError = (argv: string[]): string => {
 
 describe('args', () => {
   it('reads --flag value, --flag=value, booleans, positionals and repeated key=value pairs', () => {
-    const a = parse('in.tlog', '--scenario', 'shape-rain', '--ticks=120', '--scale', '-0.5', '--json', '--param', 'count=40', '--param=spread=2.5', 'out');
-    expect(a.positionals).toEqual(['in.tlog', 'out']);
+    const a = parse('in.taoslog', '--scenario', 'shape-rain', '--ticks=120', '--scale', '-0.5', '--json', '--param', 'count=40', '--param=spread=2.5', 'out');
+    expect(a.positionals).toEqual(['in.taoslog', 'out']);
     expect(a.string('scenario')).toBe('shape-rain');
     expect(a.number('ticks')).toBe(120);
     expect(a.number('scale')).toBe(-0.5);

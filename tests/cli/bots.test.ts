@@ -51,6 +51,19 @@ describe('bots', () => {
     ]);
   });
 
+  it('reports the server\'s room-full refusal with its words, not a client close', async () => {
+    h = await startHarness({ scenarios: [stripScenario], maxClientsPerRoom: 1 });
+    const net = h.network();
+    const run = startBots({ url: MEMORY_URL, count: 2, seconds: 2, clock: h.clock, transport: net.transport });
+    let report: Awaited<typeof run.done> | null = null;
+    void run.done.then((r) => (report = r));
+    await h.settle(() => report !== null, 5000);
+    const [first, second] = report!.bots;
+    expect([first.connected, first.closedReason]).toEqual([true, 'client-closed']);
+    expect([second.connected, second.closedReason]).toEqual([false, 'room-full']);
+    expect(second.closedDetail).toMatch(/^room-full: room default is full \(1 clients\)/);
+  });
+
   it('rejects a bad bot count', () => {
     expect(() => startBots({ url: MEMORY_URL, count: 0 })).toThrow(/count/);
   });

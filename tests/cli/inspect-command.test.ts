@@ -18,7 +18,7 @@ afterAll(async () => {
 describe('inspect-command', () => {
   it('counts records and bytes by type and reports the session length', async () => {
     const log = buildLog(120, { checkpointEvery: 60, players: 3 });
-    const path = join(dir, 'a.tlog');
+    const path = join(dir, 'a.taoslog');
     await writeFile(path, log);
     const r = await cli('inspect', path, '--json');
     expect(r.code).toBe(0);
@@ -32,6 +32,8 @@ describe('inspect-command', () => {
     expect(Object.values(info.records).reduce((n, c) => n + c.bytes, 0)).toBe(whole);
     const text = await cli('inspect', path);
     expect(text.stdout).toContain('120 ticks (2.0 s at 60 Hz), up to 3 players');
+    expect((info.checkpoints as Array<{ tick: number }>).map((c) => c.tick)).toEqual([60, 120]);
+    expect(text.stdout).toContain('checkpoints: 2 at tick 60 (1.0 s), 120 (2.0 s)');
   });
 
   it('exits 1 on a corrupt log, naming the record, and 0 on a truncated one', async () => {
@@ -39,12 +41,12 @@ describe('inspect-command', () => {
     const victim = readLogBytes(log).entries[30];
     const bad = log.slice();
     bad[victim.offset + victim.sizeBytes - 1] ^= 0xff;
-    const path = join(dir, 'bad.tlog');
+    const path = join(dir, 'bad.taoslog');
     await writeFile(path, bad);
     const r = await cli('inspect', path);
     expect(r.code).toBe(1);
     expect(r.stdout).toContain(`status: corrupt at record #${victim.index} (byte offset ${victim.offset}): bad CRC`);
-    const cut = join(dir, 'cut.tlog');
+    const cut = join(dir, 'cut.taoslog');
     await writeFile(cut, log.subarray(0, victim.offset + 2));
     const t = await cli('inspect', cut);
     expect(t.code).toBe(0);

@@ -22,7 +22,7 @@ describe('main', () => {
   });
 
   it('exits 2 with a message and the usage on stderr for an unknown command or no command', async () => {
-    const r = await cli('replya', 'x.tlog');
+    const r = await cli('replya', 'x.taoslog');
     expect(r.code).toBe(2);
     expect(r.stdout).toBe('');
     expect(r.stderr).toMatch(/^taos-physics: unknown command 'replya' \(did you mean replay\?\)/);
@@ -41,9 +41,9 @@ describe('main', () => {
       [['run', '--scenario', 'character-course', '--param', 'crateRows=99'], /parameter crateRows must be in \[0, 8\], got 99/],
       [['run', '--scenario', 'character-course', '--seed', '-3'], /--seed must be an integer in \[0, 4294967295\] or a word/],
       [['record', '--scenario', 'character-course', '--bots', '2', '--ticks', '5'], /missing --out FILE/],
-      [['replay', 'no-such-file.tlog'], /no such file: no-such-file.tlog/],
+      [['replay', 'no-such-file.taoslog'], /no such file: no-such-file.taoslog/],
       [['replay'], /missing FILE/],
-      [['verify', 'x.tlog', '--runs', '1'], /--runs must be ≥ 2, got 1/],
+      [['verify', 'x.taoslog', '--runs', '1'], /--runs must be ≥ 2, got 1/],
     ];
     for (const [argv, message] of cases) {
       const r = await cli(...argv);

@@ -21,7 +21,7 @@ afterAll(async () => {
 
 describe('record-command', () => {
   it('writes the bots\' inputs, a hash per tick, checkpoints and an end record matching an independent run', async () => {
-    const out = join(dir, 'course.tlog');
+    const out = join(dir, 'course.taoslog');
     const r = await cli('record', '--scenario', 'character-course', '--bots', '3', '--ticks', '90', '--out', out, '--seed', '11', '--checkpoint-every', '30', '--param', 'crateRows=2', '--json');
     expect(r.code).toBe(0);
     const summary = jsonOut(r);
@@ -50,14 +50,14 @@ describe('record-command', () => {
   });
 
   it('writes byte-identical logs for the same command line', async () => {
-    const a = join(dir, 'same-a.tlog');
-    const b = join(dir, 'same-b.tlog');
+    const a = join(dir, 'same-a.taoslog');
+    const b = join(dir, 'same-b.taoslog');
     for (const out of [a, b]) expect((await cli('record', '--scenario', 'character-course', '--bots', '2', '--ticks', '30', '--out', out)).code).toBe(0);
     expect(Buffer.compare(await readFile(a), await readFile(b))).toBe(0);
   });
 
   it('refuses to replace an existing file unless --force is given', async () => {
-    const out = join(dir, 'keep.tlog');
+    const out = join(dir, 'keep.taoslog');
     await writeFile(out, 'important');
     const r = await cli('record', '--scenario', 'character-course', '--bots', '1', '--ticks', '5', '--out', out);
     expect(r.code).toBe(2);
@@ -68,7 +68,7 @@ describe('record-command', () => {
   });
 
   it('honours --hash-every and --checkpoint-every 0', async () => {
-    const out = join(dir, 'sparse.tlog');
+    const out = join(dir, 'sparse.taoslog');
     expect((await cli('record', '--scenario', 'character-course', '--bots', '1', '--ticks', '25', '--out', out, '--hash-every', '10', '--checkpoint-every', '0')).code).toBe(0);
     const { entries } = readLogBytes(await readFile(out));
     expect(entries.filter((e) => e.type === 'hash').map((e) => (e.type === 'hash' ? e.tick : -1))).toEqual([0, 10, 20]);

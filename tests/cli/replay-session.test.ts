@@ -21,7 +21,7 @@ let entries: LogEntry[];
 
 beforeAll(async () => {
   dir = await mkdtemp(join(tmpdir(), 'taos-hostile-log-'));
-  const path = join(dir, 'course.tlog');
+  const path = join(dir, 'course.taoslog');
   const r = await cli('record', '--scenario', 'character-course', '--param', 'crateRows=0', '--bots', '2', '--ticks', '40', '--out', path, '--checkpoint-every', '10');
   if (r.code !== 0) throw new Error(r.stderr);
   log = new Uint8Array(await readFile(path));
@@ -121,7 +121,7 @@ describe('replayLog on hostile files', () => {
     const seen = new Set<string>();
     for (let i = 0; i < 60; i++) {
       const { what, bytes } = mutate(rng);
-      const path = join(dir, `hostile-${i}.tlog`);
+      const path = join(dir, `hostile-${i}.taoslog`);
       await writeFile(path, bytes);
       let outcome: string;
       try {
@@ -162,7 +162,7 @@ describe('replayLog on hostile files', () => {
     const victim = entries.find((e) => e.type === 'tick' && e.record.tick === 25)!;
     const present = victim.type === 'tick' ? victim.record.commands[0].playerId : 1;
     const bytes = splice(log, victim.offset, victim.sizeBytes, encodeFrame(RecordType.Tick, rawTickPayload(25, [], [present], [])));
-    const path = join(dir, 'double-join.tlog');
+    const path = join(dir, 'double-join.taoslog');
     await writeFile(path, bytes);
     const r = await cli('replay', path);
     expect(r.code).toBe(1);

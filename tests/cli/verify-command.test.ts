@@ -14,7 +14,7 @@ let logPath = '';
 
 beforeAll(async () => {
   dir = await mkdtemp(join(tmpdir(), 'taos-verify-'));
-  logPath = join(dir, 'course.tlog');
+  logPath = join(dir, 'course.taoslog');
   const r = await cli('record', '--scenario', 'character-course', '--bots', '2', '--ticks', '90', '--out', logPath, '--checkpoint-every', '30');
   if (r.code !== 0) throw new Error(r.stderr);
 });
@@ -30,7 +30,7 @@ describe('verify-command', () => {
   });
 
   it('fails a log whose inputs were retouched, in worker threads', async () => {
-    const path = join(dir, 'retouched.tlog');
+    const path = join(dir, 'retouched.taoslog');
     await writeFile(
       path,
       retouchTick(new Uint8Array(await readFile(logPath)), 20, (rec) => {
@@ -49,7 +49,7 @@ describe('verify-command', () => {
       rec.commands[0].input.moveX = rec.commands[0].input.moveX === 127 ? -127 : 127;
       rec.commands[0].input.moveZ = -127;
     });
-    const path = join(dir, 'diverged.tlog');
+    const path = join(dir, 'diverged.taoslog');
     await writeFile(path, tampered);
     const hash21 = readLogBytes(tampered).entries.find((e) => e.type === 'hash' && e.tick === 21)!;
     const r = await cli('verify', path);
@@ -66,7 +66,7 @@ describe('verify-command', () => {
     const log = new Uint8Array(await readFile(logPath));
     const victim = readLogBytes(log).entries.find((e) => e.type === 'tick' && e.record.tick === 40)!;
     log[victim.offset + Math.floor(victim.sizeBytes / 2)] ^= 0x10;
-    const path = join(dir, 'corrupt.tlog');
+    const path = join(dir, 'corrupt.taoslog');
     await writeFile(path, log);
     const expected = new RegExp(`^verify: replay vs log: CORRUPT LOG at record #${victim.index} \\(byte offset ${victim.offset}\\): bad CRC in tick record .*\\n {2}the 40 ticks before it replayed and all 41 recorded hashes matched\\n$`);
     for (const mode of [[], ['--workers']]) {

@@ -26,7 +26,7 @@ describeBrowser('failure messages', () => {
       await waitForHook(page, "t.page === 'error'", 15_000);
       await expect(page.locator('#message h2').textContent()).resolves.toBe('Server unreachable');
       await expect(page.locator('#message p').textContent()).resolves.toMatch(/Cannot reach the server at http:\/\/127\.0\.0\.1:\d+ \(.*404/);
-      await expect(page.locator('#message button').textContent()).resolves.toBe('Try again');
+      await expect(page.locator('#message button').allTextContents()).resolves.toEqual(['Try again']);
       // The failed API request itself is the only console error (the browser logs the 404).
       expect(errors.filter((e) => !/404/.test(e))).toEqual([]);
       await page.close();
@@ -44,16 +44,38 @@ describeBrowser('failure messages', () => {
       await expect(missing.page.locator('#message h2').textContent()).resolves.toBe('No such room');
       await expect(missing.page.locator('#message p').textContent()).resolves.toMatch(/nowhere/);
       expect((await readHook<TaosState>(missing.page)).connected).toBe(false);
+      // Retrying a missing room cannot help: the only way out is back to the room list, which then shows.
+      await expect(missing.page.locator('#message button').allTextContents()).resolves.toEqual(['Back to rooms']);
+      await missing.page.locator('#message button').click();
+      await missing.page.waitForSelector('#start:not([hidden]) #rooms button', { timeout: 15_000 });
+      expect(new URL(missing.page.url()).searchParams.has('room')).toBe(false);
       await missing.page.close();
 
       const { page, errors } = await browser.newPage();
       await page.goto(new URL('/?room=', server.url).href);
       await waitForHook(page, 't.connected && t.framesRendered >= 2');
-      await server.close('server-shutdown');
-      await waitForHook(page, '!t.connected', 15_000);
-      await expect(page.locator('#message h2').textContent()).resolves.toBe('Connection lost');
-      await expect(page.locator('#message p').textContent()).resolves.toMatch(/server-shutdown[\s\S]*Reconnecting \(attempt 1\)/);
-      expect((await readHook<TaosState>(page)).page).toBe('connecting');
+      const reconnectMessages: string[] = [];
+      await page.exposeFunction('__sawReconnect', (text: string) => reconnectMessages.push(text));
+      // Records every "Connection lost" the page would show, however briefly.
+      await page.evaluate(() => {
+        const box = document.getElementById('message')!;
+        new MutationObserver(() => {
+          const h = box.querySelector('h2')?.textContent ?? '';
+          if (/Connection lost|Reconnecting/.test(box.textContent ?? '')) (window as unknown as { __sawReconnect(t: string): void }).__sawReconnect(h);
+        }).observe(box, { childList: true, subtree: true, characterData: true });
+      });
+      await server.close('maintenance');
+      await waitForHook(page, "t.page === 'closed'", 15_000);
+      await expect(page.locator('#message h2').textContent()).resolves.toBe('The server shut down');
+      await expect(page.locator('#message p').textContent()).resolves.toMatch(/server-shutdown: maintenance/);
+      await expect(page.locator('#message button').allTextContents()).resolves.toEqual(['Try again', 'Back to rooms']);
+      // No reconnect loop: two seconds later the page still says the same and never showed a reconnect.
+      await page.waitForTimeout(2000);
+      const after = await readHook<TaosState>(page);
+      expect(after.page).toBe('closed');
+      expect(after.connected).toBe(false);
+      await expect(page.locator('#message h2').textContent()).resolves.toBe('The server shut down');
+      expect(reconnectMessages).toEqual([]);
       expect(errors.filter((e) => !/WebSocket|ERR_CONNECTION_REFUSED/.test(e))).toEqual([]);
       await page.close();
     } finally {

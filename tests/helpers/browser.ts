@@ -1,4 +1,4 @@
-// Browser-test helpers: headless Debian Chromium with WebGPU on SwiftShader (flags from shared/notes/browser.md),
+// Browser-test helpers: headless Debian Chromium with WebGPU on SwiftShader (CHROMIUM_FLAGS below),
 // a loopback static server for the built client, console-error capture and in-page decoding of canvas screenshots.
 import { existsSync } from 'node:fs';
 import { mkdtemp, rm } from 'node:fs/promises';
@@ -17,7 +17,12 @@ import { createStaticHandler } from '../../server/static-files.ts';
 /** Where the browser is looked for (override with CHROMIUM_PATH). */
 export const CHROMIUM_PATH = process.env.CHROMIUM_PATH ?? '/usr/bin/chromium';
 
-/** Flags that give a presenting WebGPU canvas on SwiftShader and keep Chromium off the network. */
+/**
+ * Flags that give a presenting WebGPU canvas on SwiftShader and keep Chromium off the network. `--enable-unsafe-webgpu`
+ * exposes the SwiftShader adapter (blocklisted otherwise); without the three ANGLE/Vulkan flags offscreen WebGPU works
+ * but the canvas cannot present (the device is lost and screenshots stay blank); the background-networking flags stop
+ * Chromium's own connections, which a closed network refuses.
+ */
 export const CHROMIUM_FLAGS: readonly string[] = [
   '--headless=new',
   '--no-sandbox',

@@ -3,10 +3,11 @@ import { LogEncoder, type LogHeaderInit } from '../../server/log/log-encoder.ts'
 import type { TickInputRecord } from '../../shared/sim/types.ts';
 
 /** A header for a small synthetic session. */
-export function sampleHeader(over: Partial<LogHeaderInit> = {}): LogHeaderInit {
+export function sampleHeader(over: Partial<LogHeaderInit> = {}): LogHeaderInit & { scenarioHash: string } {
   return {
     joltVersion: '1.1.0',
     scenario: 'shape-rain',
+    scenarioHash: '',
     params: { count: 40, spread: 2.5 },
     seed: 1234,
     tickRateHz: 60,

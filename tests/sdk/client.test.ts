@@ -224,15 +224,39 @@ describe('client', () => {
     await expect(client.whenConnected()).rejects.toThrow(/kicked/);
   });
 
-  it('reconnects after a server shutdown bye', () => {
+  it('ends with the server-shutdown reason after a shutdown bye and does not reconnect', () => {
     const w = world();
     const client = w.open();
     w.clock.advance(500);
+    const reconnects: number[] = [];
+    client.on('reconnecting', (r) => reconnects.push(r.attempt));
     w.server.kick(w.server.sessions[0], ByeReason.ServerShutdown, 'restarting');
+    w.clock.advance(5000);
+    expect(client.state).toBe('closed');
+    expect(client.closed).toEqual({ reason: 'server-shutdown', detail: 'server-shutdown: restarting' });
+    expect(reconnects).toEqual([]);
+    expect(w.net.connectionCount).toBe(1);
+  });
+
+  it('reconnects after a timeout bye', () => {
+    const w = world();
+    const client = w.open();
+    w.clock.advance(500);
+    w.server.kick(w.server.sessions[0], ByeReason.Timeout, 'no ping for 10 s');
     w.clock.advance(1000);
     expect(client.state).toBe('connected');
     expect(w.net.connectionCount).toBe(2);
     client.close();
+  });
+
+  it('gives up at once when the room is full', async () => {
+    const w = world({ server: { refuseWith: { code: ErrorCode.RoomFull, byeReason: ByeReason.RoomFull } } });
+    const client = w.open();
+    const connected = client.whenConnected();
+    w.clock.advance(5000);
+    await expect(connected).rejects.toThrow(/room-full/);
+    expect(client.closed?.reason).toBe('room-full');
+    expect(w.net.connectionCount).toBe(1);
   });
 
   it('gives up at once when the server refuses the room, and on a protocol version mismatch', async () => {

@@ -11,15 +11,20 @@ describe('reconnect-policy', () => {
     expect(backoffDelayMs(p, 1, () => 0.999999)).toBe(125);
   });
 
-  it('retries drops, restarts and full rooms but not kicks, floods, version or room errors', () => {
+  it('retries drops and timeouts but not shutdowns, full rooms, kicks, floods, version or room errors', () => {
     expect(isRetryable(null, null)).toBe(true);
-    expect(isRetryable(ByeReason.ServerShutdown, null)).toBe(true);
-    expect(isRetryable(ByeReason.RoomFull, null)).toBe(true);
+    expect(isRetryable(ByeReason.Timeout, null)).toBe(true);
+    expect(isRetryable(ByeReason.ServerShutdown, null)).toBe(false);
+    expect(isRetryable(ByeReason.RoomFull, null)).toBe(false);
+    expect(isRetryable(ByeReason.ServerFull, null)).toBe(false);
     expect(isRetryable(ByeReason.Kicked, null)).toBe(false);
+    expect(isRetryable(ByeReason.RoomClosed, null)).toBe(false);
     expect(isRetryable(ByeReason.Flood, null)).toBe(false);
     expect(isRetryable(null, ErrorCode.VersionMismatch)).toBe(false);
     expect(isRetryable(null, ErrorCode.RoomNotFound)).toBe(false);
-    expect(isRetryable(null, ErrorCode.ServerFull)).toBe(true);
+    expect(isRetryable(null, ErrorCode.ServerFull)).toBe(false);
+    expect(isRetryable(null, ErrorCode.RoomFull)).toBe(false);
+    expect(isRetryable(null, ErrorCode.RateLimited)).toBe(true);
   });
 
   it('checks its settings', () => {

@@ -62,7 +62,7 @@ describe('canonical inputs (real server)', () => {
     let ticksRecorded = 0;
     try {
       const players = [await WsTestClient.join(server.wsUrl, 'ann'), await WsTestClient.join(server.wsUrl, 'bob')];
-      const room = server.game.rooms.get('default')!;
+      const room = server.game.rooms.local('default')!;
       const start = room.sim.tick;
       while (room.sim.tick < start + 300) {
         for (const p of players) p.sendRaw(rawInput(rng, room.sim.tick + 2, rng.int(1, 4)));

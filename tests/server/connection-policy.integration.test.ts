@@ -168,7 +168,8 @@ describe('connection policy under a storm (real server, default limits)', () => 
     const server = await startServer({ port: 0, host: '127.0.0.1', scenario: 'test-strip', scenarios: scenarioList([stripScenario]), logger: silentLogger(), metrics, clientDir: join(tmp, 'no-client') });
     const resident: WsTestClient[] = [];
     try {
-      const arena = await server.game.rooms.create('arena', 'test-strip', {});
+      await server.game.rooms.create('arena', 'test-strip', {});
+      const arena = server.game.rooms.local('arena')!;
       const ticks = timeTicks(arena);
       // A player stays all along, so the arena ticks through both phases.
       resident.push(await WsTestClient.join(server.wsUrl, 'resident', 'arena', { localAddress: LEGIT }));

@@ -181,7 +181,7 @@ export async function startHarness(opts: HarnessOptions): Promise<Harness> {
       h.hashes.push(room.sim.stateHash());
     });
   };
-  for (const r of server.rooms.all()) watch(r);
+  for (const r of server.rooms.localRooms()) watch(r);
   let n = 0;
   const links = new MemoryNetwork(clock, { latencyMs: opts.latencyMs ?? 0, maxPayloadBytes: opts.maxPayloadBytes });
   links.listen(MEMORY_URL, (peer) => server.accept(memoryPeerConnection(peer)));
@@ -202,7 +202,7 @@ export async function startHarness(opts: HarnessOptions): Promise<Harness> {
       c.hello(name, room);
       await h.settle(() => c.welcome !== null || c.closed !== null);
       if (!c.welcome) throw new Error(`no welcome for ${name}: ${JSON.stringify(c.messages.slice(-2))}`);
-      for (const r of server.rooms.all()) watch(r);
+      for (const r of server.rooms.localRooms()) watch(r);
       return c;
     },
     ticks(count) {
@@ -214,7 +214,7 @@ export async function startHarness(opts: HarnessOptions): Promise<Harness> {
       return net;
     },
     room(id = 'default') {
-      const r = server.rooms.get(id);
+      const r = server.rooms.local(id);
       if (!r) throw new Error(`no room ${id}`);
       return r;
     },

@@ -24,6 +24,20 @@ describe('logger', () => {
     }
   });
 
+  it('writes human-readable lines in the pretty format', async () => {
+    const dir = mkdtempSync(join(tmpdir(), 'taos-log-'));
+    const fd = openSync(join(dir, 'out.log'), 'w');
+    try {
+      const log = createLogger({ level: 'info', fd, format: 'pretty' });
+      log.info({ room: 'default' }, 'room opened');
+      await flushLogger(log);
+      expect(readFileSync(join(dir, 'out.log'), 'utf8')).toMatch(/^\d\d:\d\d:\d\d\.\d{3} INFO  room opened  room=default\n$/);
+    } finally {
+      closeSync(fd);
+      rmSync(dir, { recursive: true, force: true });
+    }
+  });
+
   it('is quiet under vitest unless TAOS_LOG_LEVEL says otherwise, and a silent logger flushes at once', async () => {
     const saved = process.env.TAOS_LOG_LEVEL;
     delete process.env.TAOS_LOG_LEVEL;

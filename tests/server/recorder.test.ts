@@ -5,7 +5,7 @@ import { join } from 'node:path';
 import { afterAll, describe, expect, it } from 'vitest';
 import { readLogBytes } from '../../server/log/index.ts';
 import { silentLogger } from '../../server/logger.ts';
-import { createRoomRecorder, recordingFileName } from '../../server/recorder.ts';
+import { createRoomRecorder, recordingFileName, type DurabilityMode } from '../../server/recorder.ts';
 import type { TickInputRecord } from '../../shared/sim/types.ts';
 
 const root = mkdtempSync(join(tmpdir(), 'taos-rec-'));
@@ -62,5 +62,55 @@ describe('recorder', () => {
     await b.close(0, '0000000000000000');
     expect(readdirSync(dir)).toHaveLength(2);
     expect(recordingFileName('x', new Date(0))).toBe('x-19700101T000000Z.taoslog');
+  });
+
+  it('in tick mode releases a tick only once its record is in the file, in tick order', async () => {
+    const dir = join(root, 'd');
+    const rec = await createRoomRecorder({ dir, roomId: 'r4', scenario: 's', params: {}, seed: 1, startTick: 0, initialHash: '0000000000000000', logger: silentLogger(), durability: { mode: 'tick' } });
+    const seen: Array<{ tick: number; ticksOnDisk: number }> = [];
+    const released = new Promise<void>((done) => {
+      for (let t = 0; t < 30; t++) {
+        rec.append(record(t));
+        rec.afterStep(t + 1, () => (t + 1).toString(16).padStart(16, '0'));
+        rec.release!(t, () => {
+          seen.push({ tick: t, ticksOnDisk: readLogBytes(new Uint8Array(readFileSync(rec.path))).outcome.ticks });
+          if (t === 29) done();
+        });
+      }
+    });
+    await released;
+    expect(seen.map((s) => s.tick)).toEqual(Array.from({ length: 30 }, (_, t) => t));
+    for (const s of seen) expect(s.ticksOnDisk).toBeGreaterThan(s.tick);
+    expect(rec.syncs).toBeLessThan(30); // group commit: one sync covers the ticks appended while another ran
+    await rec.close(30, '000000000000001e');
+  });
+
+  it('in interval mode writes records within the interval without holding ticks back', async () => {
+    const dir = join(root, 'e');
+    const rec = await createRoomRecorder({ dir, roomId: 'r5', scenario: 's', params: {}, seed: 1, startTick: 0, initialHash: '0000000000000000', logger: silentLogger(), durability: { mode: 'interval', intervalMs: 20 } });
+    expect(rec.release).toBeUndefined();
+    for (let t = 0; t < 5; t++) rec.append(record(t));
+    const deadline = Date.now() + 5000;
+    while (readLogBytes(new Uint8Array(readFileSync(rec.path))).outcome.ticks < 5 && Date.now() < deadline) await new Promise((r) => setTimeout(r, 10));
+    expect(readLogBytes(new Uint8Array(readFileSync(rec.path))).outcome.ticks).toBe(5);
+    await rec.close(5, '0000000000000005');
+  });
+
+  it('writes a checkpoint every C ticks and a last one before the end record', async () => {
+    for (const mode of ['tick', 'interval', 'off'] as DurabilityMode[]) {
+      const dir = join(root, `f-${mode}`);
+      let taken = 0;
+      const rec = await createRoomRecorder({ dir, roomId: 'r6', scenario: 's', params: {}, seed: 1, startTick: 0, initialHash: '0000000000000000', logger: silentLogger(), durability: { mode }, checkpointEveryTicks: 4, checkpoint: () => Uint8Array.of(++taken) });
+      for (let t = 0; t < 10; t++) {
+        rec.append(record(t));
+        rec.afterStep(t + 1, () => (t + 1).toString(16).padStart(16, '0'));
+      }
+      await rec.close(10, '000000000000000a');
+      const log = readLogBytes(new Uint8Array(readFileSync(rec.path)));
+      expect(log.outcome.status).toBe('complete');
+      expect(log.header.checkpointEveryTicks).toBe(4);
+      const checkpoints = log.entries.flatMap((e) => (e.type === 'checkpoint' ? [[e.tick, e.bytes[0]]] : []));
+      expect(checkpoints).toEqual([[4, 1], [8, 2], [10, 3]]);
+    }
   });
 });

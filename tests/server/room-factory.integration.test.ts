@@ -34,7 +34,7 @@ const MiB = 1024 * 1024;
 
 describe('room-factory on a live server', () => {
   it('keeps external memory and RSS within 5% over 50 room open/close cycles, half of them with players', async () => {
-    const r = await runProbe(['--cycles', '50', '--warmup', '15']);
+    const r = await runProbe(['--cycles', '50', '--warmup', '30']);
     const show = (m: Memory): string => `external ${(m.externalBytes / MiB).toFixed(1)} MiB, RSS ${(m.rssBytes / MiB).toFixed(1)} MiB`;
     const detail = `before: ${show(r.before)}; after: ${show(r.after)}; every 5 cycles: ${r.trace.map(show).join(' | ')}`;
     // One retained room alone would add its 128 MiB heap to external memory: 20 times the allowance.

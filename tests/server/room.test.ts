@@ -7,7 +7,7 @@ import { createMetrics, type ServerMetrics } from '../../server/metrics.ts';
 import { Room, RoomError, type BodyStates, type RoomMember, type RoomOptions, type RoomSimulation, type WorldFrame } from '../../server/room.ts';
 import { ManualClock } from '../../shared/clock.ts';
 import { NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input.ts';
-import type { CharacterState, SimEvent, TickInputRecord } from '../../shared/sim/types.ts';
+import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '../../shared/sim/types.ts';
 import { TICK_MS } from '../../shared/tick-rate.ts';
 
 // A stand-in simulation: remembers every record, reports a join/leave event per player, one body per player.
@@ -47,7 +47,7 @@ class FakeSim implements RoomSimulation {
   staticDescriptors() {
     return [];
   }
-  bodyDescriptor() {
+  bodyDescriptor(_id: number): BodyDescriptor | undefined {
     return undefined;
   }
   destroy(): void {
@@ -261,5 +261,44 @@ describe('Room', () => {
     expect(sim.records.every((r) => r.leaves.length === 0 && r.joins.every((j) => j.playerId !== 1 || r.tick === 0))).toBe(true);
     expect(room.heldCount).toBe(0);
     expect(room.reattach(99, c)).toBeNull();
+  });
+
+  it('holds each tick\'s events and frame until its recorder releases the tick, then sends them in tick order', () => {
+    const held: Array<[number, () => void]> = [];
+    const recorder = { append: () => {}, afterStep: () => {}, close: async () => {}, release: (tick: number, send: () => void) => held.push([tick, send]) };
+    const { room, clock } = makeRoom({ snapshotRateHz: 60, recorder });
+    const m = new Member();
+    room.join(m, 'a');
+    clock.advance(2 * TICK_MS); // ticks 0..2
+    expect(held.map(([t]) => t)).toEqual([0, 1, 2]);
+    expect(m.events).toEqual([]);
+    expect(m.frames).toEqual([]);
+    held.splice(0, 2).forEach(([, send]) => send());
+    expect(m.events.map(([t]) => t)).toEqual([0]);
+    expect(m.frames.map((f) => f.tick)).toEqual([0, 1]);
+    expect(m.frames[0].bodies.count).toBe(1);
+  });
+
+  it('keeps the descriptors of a held frame\'s bodies from its own tick, so a body gone before the release still travels with it', () => {
+    const held: Array<[number, () => void]> = [];
+    const recorder = { append: () => {}, afterStep: () => {}, close: async () => {}, release: (tick: number, send: () => void) => held.push([tick, send]) };
+    const { room, sim, clock } = makeRoom({ snapshotRateHz: 60, recorder });
+    const describe = (id: number): BodyDescriptor => ({ id, shape: { kind: 'sphere', radius: 0.5 }, color: [1, 1, 1], motion: 'dynamic', hidden: false, position: { x: 0, y: 0, z: 0 }, rotation: { x: 0, y: 0, z: 0, w: 1 } });
+    sim.bodyDescriptor = (id: number) => (sim.players.has(id) ? describe(id) : undefined);
+    const watcher = new Member();
+    room.join(watcher, 'w');
+    const leaver = new Member();
+    clock.advance(TICK_MS);
+    const { playerId } = room.join(leaver, 'l')!;
+    clock.advance(TICK_MS); // the leaver's body is in this tick's frame
+    const frameTick = sim.tick - 1;
+    room.leave(playerId);
+    clock.advance(2 * TICK_MS); // ...and gone from the simulation before that frame is released
+    expect(sim.players.has(playerId)).toBe(false);
+    const [, send] = held.find(([t]) => t === frameTick)!;
+    send();
+    const frame = watcher.frames.find((f) => f.tick === frameTick)!;
+    expect(Array.from(frame.bodies.ids.subarray(0, frame.bodies.count))).toContain(playerId);
+    expect(frame.descriptors?.get(playerId)).toEqual(describe(playerId));
   });
 });

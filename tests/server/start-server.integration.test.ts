@@ -1,5 +1,6 @@
 // Integration tests for server/start-server.ts on real loopback sockets (port 0): HTTP routes, WebSocket play,
-// oversize frames, shutdown byes, and a --record session that the CLI's replay reproduces hash for hash.
+// oversize frames and shutdown byes with rooms on the main thread and in room workers, and a --record session that the
+// CLI's replay reproduces hash for hash.
 import { mkdtempSync, readdirSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
@@ -22,8 +23,12 @@ afterEach(async () => {
   server = null;
 });
 
+/** The test scenes, for room workers (which import their scenarios). */
+const TEST_SCENES = new URL('./test-scenarios.ts', import.meta.url).href;
+
 function start(extra: Parameters<typeof startServer>[0] = {}): Promise<RunningServer> {
   return startServer({
+    workerScenarioModules: [TEST_SCENES],
     port: 0,
     scenarios: scenarioList([stripScenario, emptyScenario]),
     scenario: 'test-strip',
@@ -34,9 +39,9 @@ function start(extra: Parameters<typeof startServer>[0] = {}): Promise<RunningSe
   });
 }
 
-describe('startServer (real sockets)', () => {
+describe.each([0, 2])('startServer (real sockets, %i room workers)', (roomWorkers) => {
   it('answers /healthz, /api/rooms, /metrics and a not-built page on one port', async () => {
-    server = await start();
+    server = await start({ roomWorkers });
     const health = await fetch(`${server.url}healthz`);
     expect(health.status).toBe(200);
     expect(await health.json()).toMatchObject({ ok: true, rooms: 1, clients: 0 });
@@ -63,7 +68,7 @@ describe('startServer (real sockets)', () => {
   });
 
   it('plays over WebSocket: two clients see each other move, and shutdown tells both why', async () => {
-    server = await start({ snapshotRateHz: 60 });
+    server = await start({ snapshotRateHz: 60, roomWorkers });
     const a = await WsTestClient.join(server.wsUrl, 'ann');
     const b = await WsTestClient.join(server.wsUrl, 'bob');
     await b.waitFor(() => b.frames.some((f) => f.playerIds.length === 2), 3000, 'both characters');
@@ -94,7 +99,7 @@ describe('startServer (real sockets)', () => {
   });
 
   it('closes a socket that sends a frame over maxPayload with 1009 and errors on junk', async () => {
-    server = await start();
+    server = await start({ roomWorkers });
     const junk = await WsTestClient.connect(server.wsUrl);
     junk.sendRaw(Uint8Array.of(0xc1, 0xff, 0x00));
     await junk.waitFor(() => junk.messages.length > 0, 3000, 'error message');
@@ -105,11 +110,13 @@ describe('startServer (real sockets)', () => {
     const metrics = await (await fetch(`${server.url}metrics`)).text();
     expect(metrics).toMatch(/taos_disconnects_total\{reason="oversize"\} 1/);
   });
+});
 
+describe('startServer recording (real sockets)', () => {
   it('records a served session that replays to identical per-tick hashes', async () => {
     const dir = join(tmp, 'rec');
     server = await startServer({ port: 0, scenario: 'character-course', recordDir: dir, logger: silentLogger(), metrics: createMetrics({ processMetrics: false }), clientDir: join(tmp, 'no-client') });
-    const room = server.game.rooms.get('default')!;
+    const room = server.game.rooms.local('default')!;
     const live = new Map<number, string>();
     room.onTick((record) => live.set(record.tick + 1, room.sim.stateHash()));
     const a = await WsTestClient.join(server.wsUrl, 'ann');
@@ -138,5 +145,33 @@ describe('startServer (real sockets)', () => {
     const hashes = report.hashes!;
     for (const [tick, hash] of live) expect(hashes[tick], `tick ${tick}`).toBe(hash);
     expect(live.size).toBe(report.ticks);
+  });
+
+  it('records a session played in a room worker into a log that replays with every recorded hash matching', async () => {
+    const dir = join(tmp, 'rec-workers');
+    server = await startServer({ port: 0, scenario: 'character-course', recordDir: dir, roomWorkers: 1, logger: silentLogger(), metrics: createMetrics({ processMetrics: false }), clientDir: join(tmp, 'no-client') });
+    const a = await WsTestClient.join(server.wsUrl, 'ann');
+    const b = await WsTestClient.join(server.wsUrl, 'bob');
+    let n = 0;
+    const timer = setInterval(() => {
+      n++;
+      const tick = (a.frames.at(-1)?.tick ?? 0) + 3;
+      a.send({ type: 'input', firstTick: tick, commands: [{ ...NEUTRAL_INPUT, moveZ: 127, yaw: (n * 300) & 0xffff, buttons: n % 40 === 0 ? 1 : 0 }] });
+      b.send({ type: 'input', firstTick: tick, commands: [{ ...NEUTRAL_INPUT, moveX: n % 60 < 30 ? 127 : -127, buttons: n % 25 === 0 ? 2 : 0 }] });
+    }, 16);
+    try {
+      await a.waitFor(() => (a.frames.at(-1)?.tick ?? 0) > 250, 10_000, '250 ticks');
+    } finally {
+      clearInterval(timer);
+    }
+    await server.close('test over');
+    server = null;
+    const files = readdirSync(dir);
+    expect(files).toHaveLength(1);
+    const report = await replayLog(join(dir, files[0]), { collectHashes: true });
+    expect(report.status).toBe('ok');
+    expect(report.log).toBe('complete');
+    expect(report.ticks).toBeGreaterThan(250);
+    expect(report.hashesChecked).toBeGreaterThan(3);
   });
 });

@@ -8,7 +8,7 @@ import { buildLog, fakeHash, sampleHeader, sampleTick } from '../../helpers/inpu
 describe('log-bytes', () => {
   it('reads back every record of a log in order with its header', () => {
     const { header, entries, outcome } = readLogBytes(buildLog(100, { checkpointEvery: 25 }));
-    expect(header).toEqual({ formatVersion: 1, ...sampleHeader({ checkpointEveryTicks: 25 }) });
+    expect(header).toEqual({ formatVersion: 2, ...sampleHeader({ checkpointEveryTicks: 25 }) });
     expect(outcome.status).toBe('complete');
     expect(outcome.ticks).toBe(100);
     const ticks = entries.filter((e) => e.type === 'tick').map((e) => e.record);
@@ -82,14 +82,14 @@ describe('log-bytes', () => {
   it('refuses files that are not input logs or have another format version, with a clear error', () => {
     const log = buildLog(2);
     expect(() => readLogBytes(new TextEncoder().encode('{"not":"a log"}'), 'x.json')).toThrow(new LogFormatError('x.json is not a taos-physics input log (bad magic bytes)'));
-    const v2 = log.slice();
-    v2[8] = 2;
-    expect(() => readLogBytes(v2, 'a.tlog')).toThrow('a.tlog has input log format version 2; this build reads version 1');
-    expect(() => readLogBytes(new Uint8Array(0), 'e.tlog')).toThrow('e.tlog is empty');
-    expect(() => readLogBytes(log.subarray(0, 6), 'p.tlog')).toThrow(/truncated inside its 12-byte prelude/);
-    expect(() => readLogBytes(log.subarray(0, 20), 'h.tlog')).toThrow('h.tlog is truncated inside its header record');
+    const v3 = log.slice();
+    v3[8] = 3;
+    expect(() => readLogBytes(v3, 'a.taoslog')).toThrow('a.taoslog has input log format version 3; this build reads versions 1 and 2');
+    expect(() => readLogBytes(new Uint8Array(0), 'e.taoslog')).toThrow('e.taoslog is empty');
+    expect(() => readLogBytes(log.subarray(0, 6), 'p.taoslog')).toThrow(/truncated inside its 12-byte prelude/);
+    expect(() => readLogBytes(log.subarray(0, 20), 'h.taoslog')).toThrow('h.taoslog is truncated inside its header record');
     const badHeader = log.slice();
     badHeader[20] ^= 0xff;
-    expect(() => readLogBytes(badHeader, 'c.tlog')).toThrow(/c.tlog: no valid header: bad CRC in header record/);
+    expect(() => readLogBytes(badHeader, 'c.taoslog')).toThrow(/c.taoslog: no valid header: bad CRC in header record/);
   });
 });

@@ -34,7 +34,7 @@ async function readAll(path: string, chunkBytes?: number): Promise<{ reader: Log
 describe('log-reader', () => {
   it('streams the same records as the in-memory reader at any chunk size', async () => {
     const log = buildLog(200, { checkpointEvery: 50 });
-    const path = join(dir, 'same.tlog');
+    const path = join(dir, 'same.taoslog');
     await writeFile(path, log);
     const expected = readLogBytes(log);
     for (const chunk of [64, 100, 4096, 1 << 20]) {
@@ -56,7 +56,7 @@ describe('log-reader', () => {
       if ((t + 1) % 20_000 === 0) parts.push(enc.checkpoint(t + 1, checkpoint));
     }
     parts.push(enc.end(ticks, '0000000000000000'));
-    const path = join(dir, 'big.tlog');
+    const path = join(dir, 'big.taoslog');
     await writeFile(path, Buffer.concat(parts));
     const reader = await LogReader.open(path, { chunkBytes: 16 * 1024 });
     let tickCount = 0;
@@ -87,7 +87,7 @@ describe('log-reader', () => {
     const victim = clean[101];
     const bad = log.slice();
     bad[victim.offset + 3] ^= 0x01;
-    const path = join(dir, 'flipped.tlog');
+    const path = join(dir, 'flipped.taoslog');
     await writeFile(path, bad);
     const { reader, entries, error } = await readAll(path, 128);
     expect(error).toBeInstanceOf(LogCorruptError);
@@ -100,7 +100,7 @@ describe('log-reader', () => {
   it('yields the prefix of a truncated log and reports the tail as truncated', async () => {
     const log = buildLog(80);
     const clean = readLogBytes(log).entries;
-    const path = join(dir, 'cut.tlog');
+    const path = join(dir, 'cut.taoslog');
     await writeFile(path, log.subarray(0, clean[60].offset + 5));
     const { reader, entries, error } = await readAll(path, 64);
     expect(error).toBeNull();
@@ -112,9 +112,9 @@ describe('log-reader', () => {
     const notLog = join(dir, 'notes.txt');
     await writeFile(notLog, 'hello world, definitely not a log');
     await expect(LogReader.open(notLog)).rejects.toThrow(new LogFormatError(`${notLog} is not a taos-physics input log (bad magic bytes)`));
-    const cut = join(dir, 'header-cut.tlog');
+    const cut = join(dir, 'header-cut.taoslog');
     await writeFile(cut, buildLog(1).subarray(0, 30));
     await expect(LogReader.open(cut)).rejects.toThrow(/truncated inside its header record/);
-    await expect(LogReader.open(join(dir, 'missing.tlog'))).rejects.toThrow(/ENOENT/);
+    await expect(LogReader.open(join(dir, 'missing.taoslog'))).rejects.toThrow(/ENOENT/);
   });
 });

@@ -22,7 +22,7 @@ const read = async (path: string) => readLogBytes(await readFile(path), path);
 
 describe('log-writer', () => {
   it('writes a complete log that reads back record for record', async () => {
-    const path = join(dir, 'complete.tlog');
+    const path = join(dir, 'complete.taoslog');
     const w = await LogWriter.create(path, sampleHeader({ checkpointEveryTicks: 10 }));
     w.appendHash(0, fakeHash(0));
     for (let t = 0; t < 25; t++) {
@@ -42,7 +42,7 @@ describe('log-writer', () => {
   });
 
   it('puts the header on disk at creation and hands records to the OS every flushEveryTicks ticks and at checkpoints', async () => {
-    const path = join(dir, 'policy.tlog');
+    const path = join(dir, 'policy.taoslog');
     const w = await LogWriter.create(path, sampleHeader(), { flushEveryTicks: 10 });
     expect((await read(path)).outcome).toMatchObject({ status: 'unterminated', ticks: 0 });
     for (let t = 0; t < 9; t++) w.appendTick(sampleTick(t));
@@ -62,7 +62,7 @@ describe('log-writer', () => {
   });
 
   it('leaves every flushed record readable when the writing process is killed', async () => {
-    const path = join(dir, 'killed.tlog');
+    const path = join(dir, 'killed.taoslog');
     const script = `
       import { LogWriter } from ${JSON.stringify(new URL('../../../server/log/log-writer.ts', import.meta.url).pathname)};
       import { sampleHeader, sampleTick } from ${JSON.stringify(new URL('../../helpers/input-log.ts', import.meta.url).pathname)};
@@ -81,7 +81,7 @@ describe('log-writer', () => {
   });
 
   it('rejects a bad record with a clear error and keeps the log valid and writable', async () => {
-    const path = join(dir, 'bad-input.tlog');
+    const path = join(dir, 'bad-input.taoslog');
     const w = await LogWriter.create(path, sampleHeader());
     w.appendTick(sampleTick(0));
     expect(() => w.appendTick(sampleTick(5))).toThrow('input log: tick record for tick 5, expected tick 1');
@@ -98,16 +98,16 @@ describe('log-writer', () => {
   });
 
   it('refuses to overwrite an existing file unless asked, and rejects a bad header before creating anything', async () => {
-    const path = join(dir, 'exists.tlog');
+    const path = join(dir, 'exists.taoslog');
     await writeFile(path, 'precious');
     await expect(LogWriter.create(path, sampleHeader())).rejects.toThrow(`${path} already exists (refusing to overwrite an input log; remove it or pass overwrite)`);
     expect(await readFile(path, 'utf8')).toBe('precious');
     const w = await LogWriter.create(path, sampleHeader(), { overwrite: true });
     await w.close(0, fakeHash(0));
     expect((await read(path)).outcome.status).toBe('complete');
-    const fresh = join(dir, 'never.tlog');
+    const fresh = join(dir, 'never.taoslog');
     await expect(LogWriter.create(fresh, sampleHeader({ params: { x: Number.NaN } }))).rejects.toThrow(/parameter x must be a finite number/);
     await expect(readFile(fresh)).rejects.toThrow(/ENOENT/);
-    await expect(LogWriter.create(join(dir, 'x.tlog'), sampleHeader(), { flushEveryTicks: 0 })).rejects.toThrow(/flushEveryTicks must be a positive integer/);
+    await expect(LogWriter.create(join(dir, 'x.taoslog'), sampleHeader(), { flushEveryTicks: 0 })).rejects.toThrow(/flushEveryTicks must be a positive integer/);
   });
 });

@@ -50,15 +50,23 @@ describe('record-codec', () => {
   });
 
   it('round-trips headers with numeric and string seeds and sorts parameters', () => {
-    const h = { formatVersion: 1, ...sampleHeader({ params: { zeta: 1, alpha: -0.1 } }) };
-    const back = decodeHeader(encodeHeader(h), 1);
+    const h = { formatVersion: 2, ...sampleHeader({ params: { zeta: 1, alpha: -0.1 }, scenarioHash: `sha256:${'ab'.repeat(32)}` }) };
+    const back = decodeHeader(encodeHeader(h), 2);
     expect(back).toEqual(h);
     expect(Object.keys(back.params)).toEqual(['alpha', 'zeta']);
-    const s = { formatVersion: 1, ...sampleHeader({ seed: 'night-42' }) };
-    expect(decodeHeader(encodeHeader(s), 1).seed).toBe('night-42');
+    const s = { formatVersion: 2, ...sampleHeader({ seed: 'night-42' }) };
+    expect(decodeHeader(encodeHeader(s), 2).seed).toBe('night-42');
     expect(() => encodeHeader({ ...h, params: { k: Number.POSITIVE_INFINITY } })).toThrow(/parameter k must be a finite number/);
     expect(() => encodeHeader({ ...h, scenario: '' })).toThrow(/scenario name is empty/);
     expect(() => encodeHeader({ ...h, hashEveryTicks: -1 })).toThrow(/hashEveryTicks must be an integer/);
+  });
+
+  it('reads a version-1 header, which has no scenario hash, with an empty one', () => {
+    const h = { formatVersion: 2, ...sampleHeader({ scenarioHash: '' }) };
+    const v2 = encodeHeader(h);
+    const v1 = v2.subarray(0, v2.length - 1); // the empty hash is one length byte at the end
+    expect(decodeHeader(v1, 1)).toEqual({ ...h, formatVersion: 1 });
+    expect(() => decodeHeader(v1, 2)).toThrow(PayloadError);
   });
 
   it('round-trips hash, checkpoint and end records', () => {

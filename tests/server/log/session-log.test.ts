@@ -23,7 +23,7 @@ afterAll(async () => {
 describe('session-log', () => {
   it('logs each record before applying it, with the hashes and checkpoints due, and restores from a checkpoint', async () => {
     const sim = await Simulation.create({ scenario: getScenario('character-course'), seed: 5 });
-    const path = join(dir, 's.tlog');
+    const path = join(dir, 's.taoslog');
     const session = await SessionLog.create(path, sim, { hashEveryTicks: 2, checkpointEveryTicks: 10 });
     const bots = new BotScript({ seed: 5, bots: 2 });
     const hashes = new Map<number, string>([[0, sim.stateHash()]]);
@@ -50,7 +50,7 @@ describe('session-log', () => {
 
   it('refuses a record the simulation would reject, logging nothing, and carries on', async () => {
     const sim = await Simulation.create({ scenario: getScenario('character-course') });
-    const path = join(dir, 'reject.tlog');
+    const path = join(dir, 'reject.taoslog');
     const session = await SessionLog.create(path, sim);
     session.step({ ...emptyTickInput(0), joins: [{ playerId: 4, name: 'a' }] });
     expect(() => session.step({ ...emptyTickInput(1), leaves: [9] })).toThrow(/player 9 cannot leave, it is not in the game/);
@@ -63,7 +63,7 @@ describe('session-log', () => {
       { ...emptyTickInput(0), joins: [{ playerId: 4, name: 'a' }] },
       { ...emptyTickInput(1), leaves: [4] },
     ]);
-    await expect(SessionLog.create(join(dir, 'late.tlog'), sim)).rejects.toThrow(/must be at tick 0 \(it is at 2\)/);
+    await expect(SessionLog.create(join(dir, 'late.taoslog'), sim)).rejects.toThrow(/must be at tick 0 \(it is at 2\)/);
     sim.destroy();
   });
 });

@@ -1,0 +1,67 @@
+// What the main thread needs of a room wherever it runs: on this thread (Room) or in a room worker (RemoteRoom). The
+// session enters a room through a MemberSink (where the room's bytes for that member go) and gets a Seat back.
+import type { InputCommand } from '../shared/sim/input.ts';
+import type { WelcomeMessage } from '../shared/protocol/index.ts';
+import type { OfferResult } from './input-buffer.ts';
+import type { RoomInfo } from './room.ts';
+
+/** What a room's deliveries are to the member's link: reliable events or welcome data, or a droppable snapshot. */
+export const DeliveryKind = { Reliable: 0, Snapshot: 1 } as const;
+export type DeliveryKind = (typeof DeliveryKind)[keyof typeof DeliveryKind];
+
+/** Where a room sends one member's bytes (the client session implements it on the main thread). */
+export interface MemberSink {
+  /** One framed server message for the member's socket. */
+  deliver(bytes: Uint8Array, kind: DeliveryKind): void;
+  /** A snapshot was not sent because the member's socket is backed up. */
+  snapshotSkipped(): void;
+  /** Whether the member's socket is backed up (snapshots are skipped while it is). */
+  backedUp(): boolean;
+  /** True (and the member is disconnected) when reliable messages can no longer be queued for it. */
+  tooFarBehind(): boolean;
+  /** The room closed; the member is no longer in it. */
+  roomClosed(reason: string): void;
+  /** The room removed this member (its delivery failed). */
+  removed(reason: string): void;
+}
+
+/** How a member enters: as a new player, or taking back a player it holds a resume claim for. */
+export type RoomEntry = { name: string } | { resumePlayerId: number };
+
+/** A member's place in a room once entered. */
+export interface Seat {
+  readonly playerId: number;
+  /** The welcome to send (its resume token and grace are filled in by the session). */
+  readonly welcome: WelcomeMessage;
+  /** Offers a validated command stamped for `tick`; null when the result is not known here (room in a worker). */
+  offerInput(tick: number, command: InputCommand): OfferResult | null;
+  /** The client acknowledged the snapshot of `tick`. */
+  acknowledge(tick: number): void;
+  /** The room's tick counter as last seen on this thread. */
+  serverTick(): number;
+  /** Ticks on which this player's input had not arrived and the last one was repeated. */
+  missedInputTicks(): number;
+}
+
+/** A room as the room manager, the sessions, the HTTP API and the resume tokens use it. */
+export interface HostedRoom {
+  readonly id: string;
+  readonly scenarioName: string;
+  readonly params: Readonly<Record<string, number>>;
+  readonly closed: boolean;
+  /** Players in the room, counting those held for a reconnect. */
+  readonly clientCount: number;
+  info(): RoomInfo;
+  /** The room's WASM heap, or null when closed or unknown. */
+  heapUsage(): { usedBytes: number; freeBytes: number } | null;
+  hasPlayer(playerId: number): boolean;
+  /** The player's link dropped: its character stays, held (see Room.detach). */
+  detach(playerId: number): boolean;
+  leave(playerId: number): void;
+  /** Seats a member; rejects with a RoomError when refused. */
+  enter(sink: MemberSink, entry: RoomEntry): Promise<Seat>;
+  onClose(fn: (reason: string) => void): () => void;
+  onEmptyChange(fn: (empty: boolean) => void): () => void;
+  start(): void;
+  close(reason: string): Promise<void>;
+}

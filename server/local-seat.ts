@@ -1,0 +1,32 @@
+// Entering a room that runs on this thread: the member's DeliveringMember joins (or takes back a held player), the
+// welcome is built from the live room, and the seat feeds inputs and acks straight in.
+import { ErrorCode } from '../shared/protocol/opcodes.ts';
+import type { MemberSink, RoomEntry, Seat } from './hosted-room.ts';
+import { DeliveringMember } from './member-delivery.ts';
+import type { ServerMetrics } from './metrics.ts';
+import { RoomError, type Room } from './room.ts';
+import { buildWelcome } from './welcome.ts';
+
+/** Seats `sink` in `room` (throws RoomError when refused). Used by Room.enter and by the room worker. */
+export function enterRoom(room: Room, sink: MemberSink, entry: RoomEntry, metrics: ServerMetrics): Seat & { member: DeliveringMember } {
+  const member = new DeliveringMember(sink, room.snapshots, metrics);
+  let playerId: number;
+  if ('resumePlayerId' in entry) {
+    if (room.reattach(entry.resumePlayerId, member) === null) throw new RoomError(ErrorCode.RoomNotFound, `player ${entry.resumePlayerId} is no longer in room ${room.id}`);
+    playerId = entry.resumePlayerId;
+  } else {
+    playerId = room.join(member, entry.name).playerId;
+  }
+  const built = buildWelcome(room, playerId, { token: null, graceMs: 0, resumed: 'resumePlayerId' in entry });
+  member.encoder = built.encoder;
+  const encoder = built.encoder;
+  return {
+    member,
+    playerId,
+    welcome: built.message,
+    offerInput: (tick, command) => room.offerInput(playerId, tick, command),
+    acknowledge: (tick) => encoder.acknowledge(tick),
+    serverTick: () => room.sim.tick,
+    missedInputTicks: () => room.missedInputTicks(playerId),
+  };
+}

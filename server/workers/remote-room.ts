@@ -1,0 +1,181 @@
+// A room that runs in a room worker, as the main thread sees it: the players it holds (mirrored from joins, leaves and
+// the worker's notices), its last reported tick and load, and seats whose inputs and acks travel to the worker in the
+// thread's next traffic flush.
+import type { InputCommand } from '../../shared/sim/input.ts';
+import type { HostedRoom, MemberSink, RoomEntry, Seat } from '../hosted-room.ts';
+import type { RoomInfo } from '../room.ts';
+import type { EnteredRoom, RoomStatus } from './worker-protocol.ts';
+
+/** What a RemoteRoom needs from the thread its room runs on. */
+export interface RoomThreadLink {
+  /** Routes a member's bytes to `sink`; returns the member id the worker will know it by. */
+  route(sink: MemberSink, room: RemoteRoom): number;
+  /** Records the player a routed member took (the worker's notices name members). */
+  seated(member: number, playerId: number): void;
+  unroute(member: number): void;
+  enter(room: string, member: number, entry: RoomEntry): Promise<EnteredRoom>;
+  leave(room: string, playerId: number): void;
+  detach(room: string, playerId: number): void;
+  close(room: string, reason: string): Promise<void>;
+  queueInput(member: number, tick: number, command: InputCommand): void;
+  queueAck(member: number, tick: number): void;
+}
+
+/** A room hosted by a worker thread. */
+export class RemoteRoom implements HostedRoom {
+  readonly id: string;
+  readonly scenarioName: string;
+  readonly params: Readonly<Record<string, number>>;
+  /** The worker's index in the pool. */
+  readonly workerIndex: number;
+  private readonly thread: RoomThreadLink;
+  /** Players by id, with the member id of their live link (null: held for a reconnect). */
+  private readonly players = new Map<number, number | null>();
+  private readonly closeListeners = new Set<(reason: string) => void>();
+  private readonly emptyListeners = new Set<(empty: boolean) => void>();
+  private closedReason: string | null = null;
+  private lastTick: number;
+  private lastStatus: RoomStatus | null = null;
+  private readonly opened: RoomInfo;
+
+  constructor(thread: RoomThreadLink, workerIndex: number, opened: RoomInfo) {
+    this.thread = thread;
+    this.workerIndex = workerIndex;
+    this.id = opened.id;
+    this.scenarioName = opened.scenario;
+    this.params = opened.params;
+    this.opened = opened;
+    this.lastTick = opened.tick;
+  }
+
+  get closed(): boolean {
+    return this.closedReason !== null;
+  }
+
+  get clientCount(): number {
+    return this.players.size;
+  }
+
+  /** The worker's latest figures for this room (null before the first report). */
+  get status(): RoomStatus | null {
+    return this.lastStatus;
+  }
+
+  info(): RoomInfo {
+    const s = this.lastStatus;
+    return { ...this.opened, clients: this.players.size, tick: this.lastTick, bodies: s ? s.bodies : this.opened.bodies };
+  }
+
+  heapUsage(): { usedBytes: number; freeBytes: number } | null {
+    return this.closed ? null : (this.lastStatus?.heap ?? null);
+  }
+
+  hasPlayer(playerId: number): boolean {
+    return this.players.has(playerId);
+  }
+
+  detach(playerId: number): boolean {
+    const member = this.players.get(playerId);
+    if (member === undefined || member === null || this.closed) return false;
+    this.thread.unroute(member);
+    this.players.set(playerId, null);
+    this.thread.detach(this.id, playerId);
+    return true;
+  }
+
+  leave(playerId: number): void {
+    if (!this.players.has(playerId)) return;
+    this.forget(playerId);
+    if (!this.closed) this.thread.leave(this.id, playerId);
+  }
+
+  async enter(sink: MemberSink, entry: RoomEntry): Promise<Seat> {
+    const member = this.thread.route(sink, this);
+    let entered: EnteredRoom;
+    try {
+      entered = await this.thread.enter(this.id, member, entry);
+    } catch (error) {
+      this.thread.unroute(member);
+      throw error;
+    }
+    const { playerId } = entered;
+    this.thread.seated(member, playerId);
+    const wasEmpty = this.players.size === 0;
+    this.players.set(playerId, member);
+    if (wasEmpty) this.emptyListeners.forEach((fn) => fn(false));
+    const thread = this.thread;
+    return {
+      playerId,
+      welcome: entered.welcome,
+      offerInput: (tick, command) => {
+        thread.queueInput(member, tick, command);
+        return null;
+      },
+      acknowledge: (tick) => thread.queueAck(member, tick),
+      serverTick: () => this.lastTick,
+      missedInputTicks: () => {
+        const missed = this.lastStatus?.missedInputTicks ?? [];
+        for (let i = 0; i < missed.length; i += 2) if (missed[i] === playerId) return missed[i + 1];
+        return 0;
+      },
+    };
+  }
+
+  onClose(fn: (reason: string) => void): () => void {
+    this.closeListeners.add(fn);
+    return () => this.closeListeners.delete(fn);
+  }
+
+  onEmptyChange(fn: (empty: boolean) => void): () => void {
+    this.emptyListeners.add(fn);
+    return () => this.emptyListeners.delete(fn);
+  }
+
+  /** The worker started the room when it opened it. */
+  start(): void {}
+
+  async close(reason: string): Promise<void> {
+    if (this.closed) return;
+    await this.thread.close(this.id, reason);
+  }
+
+  /** The worker ran ticks up to `tick` (from its byte batches). */
+  ticked(tick: number): void {
+    this.lastTick = tick;
+  }
+
+  /** The worker's periodic figures. */
+  reported(status: RoomStatus): void {
+    this.lastStatus = status;
+    this.lastTick = Math.max(this.lastTick, status.tick);
+  }
+
+  /** The worker removed a player (its delivery failed). */
+  removedPlayer(playerId: number): void {
+    this.forget(playerId);
+  }
+
+  /** The room is gone (closed in its worker, or the worker died): members still routed are told why. */
+  closedBy(reason: string, members: Iterable<MemberSink>): void {
+    if (this.closed) return;
+    this.closedReason = reason;
+    this.players.clear();
+    for (const sink of members) {
+      try {
+        sink.roomClosed(reason);
+      } catch {
+        // the session is gone already
+      }
+    }
+    for (const fn of this.closeListeners) fn(reason);
+    this.closeListeners.clear();
+    this.emptyListeners.clear();
+  }
+
+  private forget(playerId: number): void {
+    const member = this.players.get(playerId);
+    if (member !== undefined && member !== null) this.thread.unroute(member);
+    this.players.delete(playerId);
+    if (this.players.size === 0) this.emptyListeners.forEach((fn) => fn(true));
+  }
+}

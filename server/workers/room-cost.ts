@@ -1,0 +1,33 @@
+// What a room costs its thread per tick: the worker's measurement once the room has ticked, a per-scenario estimate
+// before that, and the budget a room worker fills before it counts as full.
+import { TICK_MS } from '../../shared/tick-rate.ts';
+import type { RemoteRoom } from './remote-room.ts';
+
+/** The share of every tick period a worker may fill with room ticks (the rest absorbs GC and jitter). */
+export const WORKER_BUDGET_MS_PER_TICK = TICK_MS * 0.75;
+
+/** Estimated CPU ms per tick of a room that has not ticked yet, by scenario (linear in what it simulates). */
+const ESTIMATES: Readonly<Record<string, (p: Readonly<Record<string, number>>) => number>> = {
+  'character-course': () => 0.4,
+  'shape-rain': (p) => 0.2 + (p.count ?? 300) * 0.006,
+  'height-field': (p) => 0.3 + (p.bodyCount ?? 80) * 0.007 + ((p.samplesPerSide ?? 64) / 256) ** 2,
+  'convex-hulls': (p) => 0.2 + (p.count ?? 150) * 0.01,
+  'mesh-terrain': () => 1.5,
+  'pendulum-chain': () => 0.8,
+  'terrain-balls': () => 2,
+  'cubes-901': () => 2.5,
+};
+
+/** A room of an unknown scenario counts as this many ms per tick until measured. */
+const UNKNOWN_SCENARIO_MS = 1;
+
+/** The estimated ms per tick of a new room of `scenario` with these (resolved) parameters. */
+export function estimateTickCpuMs(scenario: string, params: Readonly<Record<string, number>>): number {
+  const estimate = ESTIMATES[scenario];
+  return estimate ? estimate(params) : UNKNOWN_SCENARIO_MS;
+}
+
+/** A room's cost: measured when it has ticked, else its scenario's estimate. */
+export function roomTickCpuMs(room: RemoteRoom): number {
+  return room.status?.tickCpuMs ?? estimateTickCpuMs(room.scenarioName, room.params);
+}

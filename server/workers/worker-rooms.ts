@@ -1,0 +1,279 @@
+// Inside a room worker: the worker's rooms and their members, driven by ToWorker messages. Each member's bytes go into
+// one ByteBatcher flushed once per turn of the worker's loop (after the rooms that were due have ticked), with the
+// ticks they ran; every room's load is pushed every STATUS_INTERVAL_MS. Never touches a socket.
+import { getHeapStatistics } from 'node:v8';
+import type { Clock } from '../../shared/clock.ts';
+import { ErrorCode } from '../../shared/protocol/opcodes.ts';
+import { DeliveryKind, type MemberSink, type Seat } from '../hosted-room.ts';
+import { enterRoom } from '../local-seat.ts';
+import type { Logger } from '../logger.ts';
+import type { ServerMetrics } from '../metrics.ts';
+import { openRoom } from '../open-room.ts';
+import { RoomError, type Room } from '../room.ts';
+import type { RoomFactory } from '../room-manager.ts';
+import { ByteBatcher, STATUS_INTERVAL_MS, type FromWorker, type RoomStatus, type ToWorker, type WorkerRoomConfig } from './worker-protocol.ts';
+
+/** How a worker posts to the main thread (`transfer`: buffers whose ownership moves with the message). */
+export type PostToMain = (msg: FromWorker, transfer?: ArrayBuffer[]) => void;
+
+/** Options of WorkerRooms. */
+export interface WorkerRoomsOptions {
+  factory: RoomFactory;
+  clock: Clock;
+  metrics: ServerMetrics;
+  logger: Logger;
+  config: WorkerRoomConfig;
+  post: PostToMain;
+}
+
+/** A member seen from the worker: its bytes are batched for the main thread, which owns its socket. */
+class RemoteSink implements MemberSink {
+  /** The main thread said the member's socket is backed up. */
+  backed = false;
+  private readonly member: number;
+  private readonly host: WorkerRooms;
+
+  constructor(member: number, host: WorkerRooms) {
+    this.member = member;
+    this.host = host;
+  }
+
+  deliver(bytes: Uint8Array, kind: DeliveryKind): void {
+    this.host.queue(this.member, bytes, kind);
+  }
+  snapshotSkipped(): void {}
+  backedUp(): boolean {
+    return this.backed;
+  }
+  // The main thread checks its socket on every delivery and disconnects a member too far behind.
+  tooFarBehind(): boolean {
+    return false;
+  }
+  roomClosed(reason: string): void {
+    this.host.gone(this.member, true, reason);
+  }
+  removed(reason: string): void {
+    this.host.gone(this.member, false, reason);
+  }
+}
+
+interface MemberEntry {
+  room: Room;
+  seat: Seat;
+  sink: RemoteSink;
+}
+
+/** One room's counters at the start of the current status window. */
+interface Window {
+  atMs: number;
+  ticks: number;
+  busySeconds: number;
+  skipped: number;
+  cpuMs: number | null;
+}
+
+/** The rooms of one worker. */
+export class WorkerRooms {
+  private readonly opts: WorkerRoomsOptions;
+  private readonly rooms = new Map<string, Room>();
+  private readonly members = new Map<number, MemberEntry>();
+  private readonly windows = new Map<string, Window>();
+  private readonly out = new ByteBatcher();
+  private readonly ticks = new Map<string, number>();
+  private flushPending = false;
+  private readonly statusTimer: ReturnType<typeof setInterval>;
+
+  constructor(opts: WorkerRoomsOptions) {
+    this.opts = opts;
+    this.statusTimer = setInterval(() => this.pushStatus(), STATUS_INTERVAL_MS);
+    this.statusTimer.unref();
+  }
+
+  /** Takes one message from the main thread; a failure answers the request (or is logged), never kills the worker. */
+  handle(msg: ToWorker): void {
+    try {
+      this.dispatch(msg);
+    } catch (error) {
+      if ('req' in msg) this.fail(msg.req, error);
+      else this.opts.logger.error({ err: error, message: msg.t }, 'room worker: handling a message failed');
+    }
+  }
+
+  /** Queues one member's bytes for the next flush (RemoteSink). */
+  queue(member: number, bytes: Uint8Array, kind: DeliveryKind): void {
+    this.out.add(member, bytes, kind);
+    this.scheduleFlush();
+  }
+
+  /** The room let go of a member (RemoteSink): the main thread hears it after the member's last bytes. */
+  gone(member: number, closed: boolean, reason: string): void {
+    this.members.delete(member);
+    this.postInOrder({ t: 'gone', member, closed, reason });
+  }
+
+  private dispatch(msg: ToWorker): void {
+    switch (msg.t) {
+      case 'open':
+        void this.open(msg.req, msg.id, msg.scenario, msg.params, msg.seed);
+        return;
+      case 'enter': {
+        const room = this.rooms.get(msg.room);
+        if (!room || room.closed) throw new RoomError(ErrorCode.RoomNotFound, `room ${msg.room} is closed`);
+        const sink = new RemoteSink(msg.member, this);
+        const seat = enterRoom(room, sink, msg.entry, this.opts.metrics);
+        this.members.set(msg.member, { room, seat, sink });
+        this.reply(msg.req, { playerId: seat.playerId, welcome: seat.welcome });
+        return;
+      }
+      case 'leave':
+        this.dropMember(msg.room, msg.player);
+        this.rooms.get(msg.room)?.leave(msg.player);
+        return;
+      case 'detach':
+        this.dropMember(msg.room, msg.player);
+        this.rooms.get(msg.room)?.detach(msg.player);
+        return;
+      case 'close': {
+        const room = this.rooms.get(msg.room);
+        if (!room) {
+          this.reply(msg.req, null);
+          return;
+        }
+        void room.close(msg.reason).then(
+          () => this.reply(msg.req, null),
+          (error: unknown) => this.fail(msg.req, error),
+        );
+        return;
+      }
+      case 'traffic': {
+        const { inputs, acks, pressure } = msg.traffic;
+        for (const input of inputs) {
+          const m = this.members.get(input.member);
+          if (m) for (let i = 0; i < input.commands.length; i++) m.seat.offerInput(input.firstTick + i, input.commands[i]);
+        }
+        for (let i = 0; i < acks.length; i += 2) this.members.get(acks[i])?.seat.acknowledge(acks[i + 1]);
+        for (let i = 0; i < pressure.length; i += 2) {
+          const m = this.members.get(pressure[i]);
+          if (m) m.sink.backed = pressure[i + 1] === 1;
+        }
+        return;
+      }
+      case 'metrics':
+        void this.opts.metrics.registry.getMetricsAsJSON().then(
+          (json) => this.reply(msg.req, json),
+          (error: unknown) => this.fail(msg.req, error),
+        );
+        return;
+    }
+  }
+
+  private async open(req: number, id: string, scenario: string, params: Readonly<Record<string, number>>, seed: number | string): Promise<void> {
+    try {
+      if (this.rooms.has(id)) throw new RoomError(ErrorCode.Internal, `room ${id} is already open in this worker`);
+      const { config } = this.opts;
+      const room = await openRoom(
+        { id, scenario, params, seed },
+        {
+          factory: this.opts.factory,
+          clock: this.opts.clock,
+          metrics: this.opts.metrics,
+          logger: this.opts.logger,
+          snapshotRateHz: config.snapshotRateHz,
+          maxClientsPerRoom: config.maxClientsPerRoom,
+          maxCatchUpTicks: config.maxCatchUpTicks,
+          maxInputLeadTicks: config.maxInputLeadTicks,
+          pauseWhenEmpty: config.pauseWhenEmpty,
+        },
+      );
+      this.rooms.set(id, room);
+      room.onTick(() => {
+        this.ticks.set(id, room.sim.tick);
+        this.scheduleFlush();
+      });
+      room.onClose((reason) => {
+        this.rooms.delete(id);
+        this.windows.delete(id);
+        this.ticks.delete(id);
+        for (const [member, m] of this.members) if (m.room === room) this.members.delete(member);
+        this.postInOrder({ t: 'closed', room: id, reason });
+      });
+      room.start();
+      this.reply(req, { info: room.info() });
+    } catch (error) {
+      this.fail(req, error);
+    }
+  }
+
+  private dropMember(roomId: string, playerId: number): void {
+    for (const [member, m] of this.members) if (m.room.id === roomId && m.seat.playerId === playerId) this.members.delete(member);
+  }
+
+  private reply(req: number, value: unknown): void {
+    this.postInOrder({ t: 'reply', req, ok: true, value });
+  }
+
+  private fail(req: number, error: unknown): void {
+    const code = error instanceof RoomError ? error.code : null;
+    if (code === null) this.opts.logger.error({ err: error }, 'room worker: a request failed');
+    this.postInOrder({ t: 'reply', req, ok: false, code, message: error instanceof Error ? error.message : String(error) });
+  }
+
+  /** Posts after every byte queued before it, so the main thread sees deliveries and notices in the order they happened. */
+  private postInOrder(msg: FromWorker): void {
+    this.flush();
+    this.opts.post(msg);
+  }
+
+  private scheduleFlush(): void {
+    if (this.flushPending) return;
+    this.flushPending = true;
+    setImmediate(() => this.flush());
+  }
+
+  private flush(): void {
+    this.flushPending = false;
+    if (this.out.empty && this.ticks.size === 0) return;
+    const batch = this.out.take();
+    const ticks = [...this.ticks];
+    this.ticks.clear();
+    this.opts.post({ t: 'out', batch, ticks }, [batch.buffer]);
+  }
+
+  private pushStatus(): void {
+    const now = performance.now();
+    const rooms: RoomStatus[] = [];
+    for (const room of this.rooms.values()) rooms.push(this.status(room, now));
+    this.opts.post({ t: 'status', rooms, externalBytes: getHeapStatistics().external_memory });
+  }
+
+  private status(room: Room, now: number): RoomStatus {
+    const clock = room.tickClock;
+    const w = this.windows.get(room.id) ?? { atMs: now, ticks: clock.ticksRun, busySeconds: room.busySeconds, skipped: clock.skippedTicks, cpuMs: null };
+    const ran = clock.ticksRun - w.ticks;
+    const elapsedMs = now - w.atMs;
+    const cpuMs = ran > 0 ? ((room.busySeconds - w.busySeconds) * 1000) / ran : w.cpuMs;
+    this.windows.set(room.id, { atMs: now, ticks: clock.ticksRun, busySeconds: room.busySeconds, skipped: clock.skippedTicks, cpuMs });
+    const missed: number[] = [];
+    const info = room.info();
+    for (const playerId of room.playerIds()) missed.push(playerId, room.missedInputTicks(playerId));
+    return {
+      id: room.id,
+      tick: info.tick,
+      clients: info.clients,
+      bodies: info.bodies,
+      heap: room.heapUsage(),
+      ticksPerSecond: elapsedMs > 0 ? (ran * 1000) / elapsedMs : 0,
+      tickCpuMs: cpuMs,
+      slow: clock.skippedTicks > w.skipped,
+      skippedTicks: clock.skippedTicks,
+      missedInputTicks: missed,
+    };
+  }
+
+  /** Closes every room (the worker is being stopped). */
+  async closeAll(reason: string): Promise<void> {
+    clearInterval(this.statusTimer);
+    await Promise.all([...this.rooms.values()].map((r) => r.close(reason)));
+    this.flush();
+  }
+}

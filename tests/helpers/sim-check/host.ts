@@ -1,0 +1,107 @@
+// Node side of the cross-runtime determinism check: bundles page.ts for the browser (esbuild, as the client build
+// does), serves it with the Jolt .wasm and a job on 127.0.0.1, and hands back what a browser POSTs to /result.
+import { build } from 'esbuild';
+import { copyFile, mkdtemp, rm, writeFile } from 'node:fs/promises';
+import { createServer, type IncomingMessage } from 'node:http';
+import type { AddressInfo } from 'node:net';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { joltWasmPath } from '../../../server/physics-node.ts';
+import { createStaticHandler } from '../../../server/static-files.ts';
+import type { ResumeJob, SimCheckJob, SimCheckResult } from './protocol.ts';
+
+const PAGE_ENTRY = fileURLToPath(new URL('./page.ts', import.meta.url));
+const WASM_FILE = 'jolt-physics.wasm';
+/** The largest result body accepted (hashes of every scenario: a few tens of KiB). */
+const MAX_RESULT_BYTES = 4 << 20;
+
+/** A served check page; `nextResult()` resolves with the next POSTed result. */
+export interface SimCheckHost {
+  url: string;
+  nextResult(timeoutMs: number): Promise<SimCheckResult>;
+  close(): Promise<void>;
+}
+
+async function readBody(req: IncomingMessage): Promise<string> {
+  const chunks: Buffer[] = [];
+  let size = 0;
+  for await (const chunk of req) {
+    size += (chunk as Buffer).byteLength;
+    if (size > MAX_RESULT_BYTES) throw new Error('result too large');
+    chunks.push(chunk as Buffer);
+  }
+  return Buffer.concat(chunks).toString('utf8');
+}
+
+/** Bundles the page into a temporary directory and serves it with `resumes` as its job. */
+export async function startSimCheckHost(resumes: ResumeJob[]): Promise<SimCheckHost> {
+  const dir = await mkdtemp(join(tmpdir(), 'taos-sim-check-'));
+  try {
+    await build({
+      entryPoints: [PAGE_ENTRY],
+      outfile: join(dir, 'page.js'),
+      bundle: true,
+      format: 'esm',
+      platform: 'browser',
+      target: ['es2022'],
+      // Jolt's glue imports node:module only on its Node path.
+      external: ['node:module'],
+      logLevel: 'silent',
+    });
+    await copyFile(joltWasmPath(), join(dir, WASM_FILE));
+    await writeFile(join(dir, 'index.html'), '<!doctype html><meta charset="utf-8"><title>sim-check</title><link rel="icon" href="data:,"><script type="module" src="page.js"></script>\n');
+    const job: SimCheckJob = { wasmFile: WASM_FILE, resumes };
+    await writeFile(join(dir, 'job.json'), JSON.stringify(job));
+  } catch (err) {
+    await rm(dir, { recursive: true, force: true });
+    throw err;
+  }
+  const statics = createStaticHandler(dir);
+  const waiting: Array<(r: SimCheckResult) => void> = [];
+  const arrived: SimCheckResult[] = [];
+  const server = createServer((req, res) => {
+    if (req.method === 'POST' && req.url === '/result') {
+      readBody(req)
+        .then((text) => {
+          const result = JSON.parse(text) as SimCheckResult;
+          res.writeHead(204).end();
+          const w = waiting.shift();
+          if (w) w(result);
+          else arrived.push(result);
+        })
+        .catch((err: unknown) => res.writeHead(400).end(String(err)));
+      return;
+    }
+    statics(req, res)
+      .then((answered) => {
+        if (!answered) res.writeHead(405).end();
+      })
+      .catch(() => res.writeHead(500).end());
+  });
+  await new Promise<void>((resolve) => server.listen(0, '127.0.0.1', resolve));
+  const { port } = server.address() as AddressInfo;
+  return {
+    url: `http://127.0.0.1:${port}/`,
+    nextResult(timeoutMs) {
+      const ready = arrived.shift();
+      if (ready) return Promise.resolve(ready);
+      return new Promise((resolve, reject) => {
+        const timer = setTimeout(() => {
+          waiting.splice(waiting.indexOf(done), 1);
+          reject(new Error(`no result from the browser within ${timeoutMs} ms`));
+        }, timeoutMs);
+        const done = (r: SimCheckResult): void => {
+          clearTimeout(timer);
+          resolve(r);
+        };
+        waiting.push(done);
+      });
+    },
+    async close() {
+      server.closeAllConnections();
+      await new Promise<void>((resolve) => server.close(() => resolve()));
+      await rm(dir, { recursive: true, force: true });
+    },
+  };
+}
