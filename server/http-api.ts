@@ -89,7 +89,7 @@ export function createHttpApi(opts: HttpApiOptions): HttpApi {
     async deleteRoom(id) {
       if (id === DEFAULT_ROOM_ID) throw new HttpError(409, HttpErrorCode.DefaultRoom, 'the default room stays open while the server runs');
       const room = game.rooms.get(id);
-      if (!room && opts.fleet) await opts.fleet.locate(id).catch((e: unknown) => Promise.reject(e instanceof RoomMovedError ? movedAnswer(e) : e));
+      if (!room && opts.fleet && isRoomId(id)) await opts.fleet.locate(id).catch((e: unknown) => Promise.reject(e instanceof RoomMovedError ? movedAnswer(e) : e));
       if (!room) throw new HttpError(404, HttpErrorCode.RoomNotFound, `no room ${quote(id)}`);
       const info = room.info();
       await room.close(`room ${id} was closed through the server's HTTP API`);
