@@ -58,7 +58,7 @@ export function createHttpApi(opts: HttpApiOptions): HttpApi {
   };
 
   return {
-    health: () => game.health(),
+    health: () => (opts.fleet ? { ...game.health(), fleet: opts.fleet.status() } : game.health()),
     listRooms: () => (opts.fleet ? listFleetRooms(opts.fleet, game.listRooms()) : game.listRooms()),
     listScenarios: () =>
       scenarios.names().map((n) => {

@@ -297,6 +297,11 @@ export class FleetDirectory implements RoomDirectory {
     return out;
   }
 
+  /** For /healthz: this member and whether Redis answers (the server stays healthy without it: local rooms go on). */
+  status(): { member: string; url: string; redis: 'connected' | 'unreachable' } {
+    return { member: this.id, url: this.url, redis: this.redis.status === 'ready' && !this.failing ? 'connected' : 'unreachable' };
+  }
+
   /** The members as last read (possibly stale; empty before the first read). */
   cachedMembers(): readonly MemberRecord[] {
     return this.cache;

@@ -37,7 +37,9 @@ describeRedis('a fleet member without a working Redis', () => {
   it('starts and serves without Redis, refuses new room ids clearly, and joins the fleet once Redis comes up', async () => {
     const port = await freePort();
     const proc = await serve(`redis://127.0.0.1:${port}`);
-    expect((await fetch(`${proc.url}healthz`)).status).toBe(200);
+    const health = await fetch(`${proc.url}healthz`);
+    expect(health.status).toBe(200);
+    expect(await health.json()).toMatchObject({ ok: true, fleet: { url: proc.url, redis: 'unreachable' } });
     const player = await WsTestClient.join(proc.wsUrl, 'Ada');
     expect(player.welcome?.roomId).toBe('default');
     player.close();
@@ -48,6 +50,7 @@ describeRedis('a fleet member without a working Redis', () => {
 
     const r = await redis({ port });
     await eventually(async () => (await create(proc, 'later')).status === 201, 15_000, 'the room id can be claimed');
+    await eventually(async () => ((await (await fetch(`${proc.url}healthz`)).json()) as { fleet: { redis: string } }).fleet.redis === 'connected', 5000, '/healthz says Redis is connected');
     const client = new Redis(r.url);
     try {
       const owner = await client.get('taos:room:later');
