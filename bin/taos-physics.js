@@ -1,6 +1,8 @@
 #!/usr/bin/env node
-// CLI entry: runs cli/main.ts on Node 24 (TypeScript type stripping); re-executes with the pinned Node if needed.
+// CLI entry: runs the CLI on Node 24 (from the TypeScript sources in a checkout, from dist/ in an installed package);
+// re-executes with the pinned Node if needed.
 import { spawnSync } from 'node:child_process';
+import { existsSync } from 'node:fs';
 import { createRequire } from 'node:module';
 
 const major = Number(process.versions.node.split('.')[0]);
@@ -10,11 +12,12 @@ if (major < 24) {
   try {
     nodePath = require.resolve('node/bin/node');
   } catch {
-    console.error(`taos-physics needs Node >= 24 (found ${process.version}); run "npm install" to get the pinned one.`);
+    console.error(`taos-physics needs Node >= 24 (found ${process.version}).`);
     process.exit(2);
   }
   const result = spawnSync(nodePath, [new URL(import.meta.url).pathname, ...process.argv.slice(2)], { stdio: 'inherit' });
   process.exit(result.status ?? 1);
 }
-const { main } = await import('../cli/main.ts');
+const source = new URL('../cli/main.ts', import.meta.url);
+const { main } = await import(existsSync(source) ? source.href : new URL('../dist/cli/main.js', import.meta.url).href);
 process.exitCode = await main(process.argv.slice(2));

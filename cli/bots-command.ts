@@ -1,6 +1,8 @@
-// `bots --url ws://127.0.0.1:8080 --count N [--room ID] [--seconds S] [--seed SEED]`: headless scripted bots that
-// join a running server through the client library and play until the time is up (or Ctrl+C), then report traffic.
+// `bots --url ws://127.0.0.1:8080 --count N [--room ID] [--seconds S] [--seed SEED] [--predict]`: headless scripted
+// bots that join a running server through the client library and play until the time is up (or Ctrl+C), then report
+// traffic (and, with --predict, their rollback numbers and desyncs).
 import { startBots, type BotsReport } from './bots.ts';
+import { nodePredictOptions } from './predict-options.ts';
 import type { ParsedArgs } from './args.ts';
 import { ExitCode, UsageError, type CliIo, type CommandSpec } from './command.ts';
 
@@ -13,6 +15,8 @@ function summary(r: BotsReport): string {
         `${(b.bytesOut / 1024).toFixed(1)} KiB out, rtt ${rtt}, missed input ticks ${b.missedInputTicks ?? '-'}` +
         `${b.serverErrors ? `, ${b.serverErrors} server error(s)` : ''}${b.closedReason && b.closedReason !== 'client-closed' ? `, ended by the server: ${b.closedDetail ?? b.closedReason}` : ''}`,
     );
+    const p = b.prediction;
+    if (p) lines.push(`    ${p.mode}${p.reason ? ` (${p.reason})` : ''}: rollback p99 ${p.rollbackDepthP99} ticks, re-sim p99 ${p.resimMsP99.toFixed(2)} ms, ${p.corrections} corrections, ${p.desyncs} desyncs`);
   }
   return `${lines.join('\n')}\n`;
 }
@@ -29,6 +33,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
     room,
     seconds,
     seed: args.string('seed') ?? 1,
+    predict: args.flag('predict') ? nodePredictOptions() : undefined,
     progress: (line) => io.stderr(`${line}\n`),
   });
   const onSignal = (): void => botsRun.stop();
@@ -66,6 +71,7 @@ export const botsCommand: CommandSpec = {
     { name: 'seconds', kind: 'number', valueName: 'S', description: 'stop after S seconds', min: 0.1, max: 86_400 },
     { name: 'seed', kind: 'string', valueName: 'SEED', description: 'seed of the bots’ scripts; default 1' },
     { name: 'json', kind: 'boolean', description: 'print the report as JSON' },
+    { name: 'predict', kind: 'boolean', description: 'run the simulation in each bot (predicted play) where the room offers predict mode' },
   ],
   run,
 };

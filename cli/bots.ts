@@ -1,6 +1,6 @@
 // Headless scripted bots over the network: N clients of the client library (sdk/) join a server, each driven
 // by its own seeded BotScript (walk, strafe, turn, sprint, jump, fire) at 60 commands per second, and report traffic.
-import { connect, type NetClient, type TransportFactory } from '../sdk/index.ts';
+import { connect, type NetClient, type PredictionStats, type PredictOptions, type TransportFactory } from '../sdk/index.ts';
 import type { Clock, TimerHandle } from '../shared/clock.ts';
 import { BotScript } from '../shared/sim/bots.ts';
 import { NEUTRAL_INPUT } from '../shared/sim/input.ts';
@@ -25,6 +25,8 @@ export interface BotsOptions {
   transport?: TransportFactory;
   /** Progress lines (every 5 s). */
   progress?: (line: string) => void;
+  /** Predicted play (bots run the simulation themselves in rooms that offer predict mode). */
+  predict?: PredictOptions;
 }
 
 /** One bot's outcome. */
@@ -42,6 +44,8 @@ export interface BotReport {
   rttMs: number | null;
   missedInputTicks: number | null;
   serverErrors: number;
+  /** Predicted play's numbers at the end (null: the bot did not predict). */
+  prediction: PredictionStats | null;
 }
 
 /** The run's outcome. */
@@ -90,6 +94,7 @@ export function startBots(opts: BotsOptions): BotsRun {
           rttMs: s?.rttMs ?? null,
           missedInputTicks: s?.missedInputTicks ?? null,
           serverErrors: b.errors,
+          prediction: s?.prediction ?? null,
         };
       });
       const totalIn = reports.reduce((a, r) => a + r.bytesIn, 0);
@@ -109,7 +114,7 @@ export function startBots(opts: BotsOptions): BotsRun {
     bots.push(bot);
     later(i * spacing, () => {
       if (stopped) return;
-      const client = connect(opts.url, { name: bot.name, room: opts.room ?? null, clock, transport: opts.transport });
+      const client = connect(opts.url, { name: bot.name, room: opts.room ?? null, clock, transport: opts.transport, predict: opts.predict });
       bot.client = client;
       client.on('welcome', () => (bot.connected = true));
       client.on('serverError', () => bot.errors++);

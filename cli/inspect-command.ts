@@ -67,6 +67,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
     const lines = [
       `${file}: input log v${h.formatVersion}, ${h.scenario} (seed ${JSON.stringify(h.seed)}), jolt-physics ${h.joltVersion}, by ${h.createdBy || '?'}`,
       `  params: ${Object.entries(h.params).map(([k, v]) => `${k}=${v}`).join(' ') || '(none)'}`,
+      ...(h.scenarioHash ? [`  scenario module: ${h.scenarioHash} (replay and verify need that module: --scenario FILE)`] : []),
       `  ${ticks} ticks (${info.seconds.toFixed(1)} s at ${h.tickRateHz} Hz), up to ${maxPlayers} players, ${o.fileBytes} bytes (${info.bytesPerTick.toFixed(1)} bytes/tick)`,
       `  hash every ${h.hashEveryTicks || '-'} ticks, checkpoint every ${h.checkpointEveryTicks || '-'} ticks`,
       ...Object.entries(counts).map(([type, c]) => `  ${type.padEnd(10)} ${String(c.records).padStart(8)} records ${String(c.bytes).padStart(12)} bytes`),

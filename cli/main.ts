@@ -64,7 +64,6 @@ function unknownCommand(name: string, io: CliIo): number {
 }
 
 async function packageVersion(): Promise<string> {
-  const { readFile } = await import('node:fs/promises');
-  const pkg = JSON.parse(await readFile(new URL('../package.json', import.meta.url), 'utf8')) as { version: string };
-  return pkg.version;
+  const { packageVersion: version } = await import('../server/package-root.ts');
+  return version();
 }

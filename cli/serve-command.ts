@@ -1,14 +1,15 @@
-// `serve [--port 8080] [--host 127.0.0.1] [--scenario NAME] [--param k=v] [--snapshot-rate 30] [--record DIR]
-// [--max-clients N] [--tls-cert FILE --tls-key FILE] [--trust-proxy] [access flags] …`: runs the networked server
+// `serve [--port 8080] [--host 127.0.0.1] [--scenario NAME] [--param k=v] [--snapshot-rate 30] [--net-mode auto] [--record DIR]
+// [--max-clients N] [--tls-cert FILE --tls-key FILE] [--trust-proxy] [--replay FILE] [access flags] …`: runs the networked server
 // (HTTP(S) + WebSocket on one port) until SIGINT/SIGTERM. Secrets may come from the environment (TAOS_ADMIN_TOKEN,
 // TAOS_JOIN_SECRET) so they stay out of `ps` output.
-import { readFileSync } from 'node:fs';
+import { readFileSync, statSync } from 'node:fs';
 import { availableParallelism } from 'node:os';
 import { DEFAULT_SCENARIO } from '../scenarios/index.ts';
 import { ADMIN_TOKEN_ENV, checkAdminTokenText } from '../server/access/admin-auth.ts';
 import { parseAllowedOrigins } from '../server/access/origin-policy.ts';
 import { JOIN_SECRET_ENV, MIN_JOIN_SECRET_LENGTH } from '../server/access/seat-tokens.ts';
 import type { ConnectionPolicyOptions } from '../server/connection-policy.ts';
+import { isNetModeRequest, type NetModeRequest } from '../server/net-mode-policy.ts';
 import { DEFAULT_CHECKPOINT_EVERY_SECONDS, DEFAULT_DURABILITY, DEFAULT_DURABILITY_INTERVAL_MS, DURABILITY_MODES, type DurabilityMode } from '../server/recorder.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import { LogFormat } from '../server/pretty-log.ts';
@@ -72,6 +73,12 @@ function accessOptions(args: ParsedArgs): Pick<ServeOptions, 'allowedOrigins' | 
   };
 }
 
+function netModeFlag(value: string | undefined): NetModeRequest | undefined {
+  if (value === undefined) return undefined;
+  if (!isNetModeRequest(value)) throw new UsageError(`--net-mode must be snapshot, predict or auto, got "${value}"`);
+  return value;
+}
+
 /** The port from the PORT environment variable (what hosting platforms set), else 8080; a bad value is a usage error. */
 export function portFromEnv(env: string | undefined): number {
   if (env === undefined || env === '') return 8080;
@@ -99,6 +106,8 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
   const own = isScenarioPath(scenario) ? { scenarios: scenarioSource([def]), workerScenarioModules: [pathToFileURL(resolvePath(scenario)).href] } : {};
   const params = args.pairs('param');
   checkParams(def, params);
+  const pageDir = args.string('page');
+  if (pageDir !== undefined && !statSync(pageDir, { throwIfNoEntry: false })?.isDirectory()) throw new UsageError(`--page ${pageDir} is not a folder`);
   const record = args.string('record');
   if (record === '') throw new UsageError('--record must name a directory');
   const logLevel = args.string('log-level');
@@ -119,6 +128,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
       params,
       seed: parseSeed(args.string('seed')),
       snapshotRateHz: args.number('snapshot-rate', 30),
+      netMode: netModeFlag(args.string('net-mode')),
       recordDir: record ?? null,
       maxClients: args.number('max-clients', 32),
       maxRooms: args.number('max-rooms'),
@@ -129,6 +139,8 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
       trustProxy: args.flag('trust-proxy'),
       tls: readTls(args.string('tls-cert'), args.string('tls-key')),
       clientDir: args.string('client-dir'),
+      replayFile: args.string('replay'),
+      pageDir,
       logLevel,
       logFormat,
       ...recordingOptions(args),
@@ -147,7 +159,8 @@ export const serveCommand: CommandSpec = {
   details:
     'Serves the browser client at /, WebSocket play on the same port, /healthz, /metrics (Prometheus) and\n' +
     '/api/rooms. The default room runs --scenario; a client may open another room by naming a scenario as its room.\n' +
-    'With --record DIR every room writes its input log there (replay it with `replay FILE`), with a checkpoint every\n' +
+    'With --record DIR every room writes its input log there (replay it with `replay FILE`, or in the browser at\n' +
+    '/replay, where --replay FILE serves one), with a checkpoint every\n' +
     `--checkpoint-every seconds. --durability (default ${DEFAULT_DURABILITY}): "tick" writes and fdatasyncs each tick's record (group\n` +
     'commit) before its snapshot, events or input acks leave, so a crash loses nothing any client saw, for a fraction\n' +
     'of a millisecond per tick (docs/server.md); "interval" syncs every --durability-interval-ms and holds nothing\n' +
@@ -164,6 +177,7 @@ export const serveCommand: CommandSpec = {
     { name: 'param', kind: 'pair', valueName: 'k=v', description: 'scenario parameter (repeatable)' },
     { name: 'seed', kind: 'string', valueName: 'SEED', description: 'simulation seed of every room; default 1' },
     { name: 'snapshot-rate', kind: 'int', valueName: 'HZ', description: `snapshots per second per client (1-${TICK_RATE_HZ}); default 30`, min: 1, max: TICK_RATE_HZ },
+    { name: 'net-mode', kind: 'string', valueName: 'MODE', description: 'how rooms serve clients: snapshot, predict, or auto (predict where a frame affords the rollback); default auto' },
     { name: 'record', kind: 'string', valueName: 'DIR', description: "write every room's input log into DIR" },
     { name: 'durability', kind: 'string', valueName: 'MODE', description: `when recorded ticks reach the disk: tick, interval or off; default ${DEFAULT_DURABILITY}` },
     { name: 'durability-interval-ms', kind: 'int', valueName: 'MS', description: `sync period of --durability interval; default ${DEFAULT_DURABILITY_INTERVAL_MS}`, min: 1, max: 60_000 },
@@ -179,6 +193,8 @@ export const serveCommand: CommandSpec = {
     { name: 'tls-key', kind: 'string', valueName: 'FILE', description: "the certificate's PEM private key" },
     { name: 'trust-proxy', kind: 'boolean', description: 'take client addresses from X-Forwarded-For/-Proto (only behind a reverse proxy)' },
     { name: 'client-dir', kind: 'string', valueName: 'DIR', description: 'built browser client to serve; default dist/client' },
+    { name: 'replay', kind: 'string', valueName: 'FILE', description: 'an input log the replay viewer at /replay opens (served at /replay.taoslog)' },
+    { name: 'page', kind: 'string', valueName: 'DIR', description: "a game's own page folder, served before the built client (/kit.js stays reachable)" },
     { name: 'log-level', kind: 'string', valueName: 'LEVEL', description: 'log level (trace, debug, info, warn, error, silent); default info' },
     { name: 'log-format', kind: 'string', valueName: 'FORMAT', description: 'log lines on stderr: pretty (time, level, message, fields) or json; default pretty on a terminal, else json' },
     { name: 'allowed-origins', kind: 'string', valueName: 'LIST', description: 'comma-separated origins whose pages may connect or post (plus self, loopback, *); default self,loopback' },

@@ -34,6 +34,7 @@ export async function runServe(opts: ServeOptions, io: CliIo): Promise<number> {
   const what = room ? `${room.scenarioName}` : 'no default room';
   const removeLastResort = installLastResort({ logger, metrics: server.game.metrics });
   io.stdout(`taos-physics serving ${what} at ${server.url} (WebSocket ${server.wsUrl}); Ctrl+C stops\n`);
+  if (opts.replayFile) io.stdout(`replay viewer for ${opts.replayFile}: ${new URL('/replay', server.url).href}\n`);
   return new Promise<number>((resolve) => {
     let done = false;
     const exit = (code: number): void => {

@@ -2,17 +2,17 @@
 // and compares their per-tick hash sequences with each other and with the log; exit 1 on any difference.
 import { spawn } from 'node:child_process';
 import { availableParallelism } from 'node:os';
-import { extname, resolve } from 'node:path';
-import { fileURLToPath } from 'node:url';
+import { join, resolve } from 'node:path';
 import { Worker } from 'node:worker_threads';
 import { LogReader } from '../server/log/log-reader.ts';
+import { PACKAGE_ROOT, siblingModuleUrl } from '../server/package-root.ts';
 import type { ParsedArgs } from './args.ts';
 import { ExitCode, UsageError, type CliIo, type CommandSpec } from './command.ts';
 import { describeFailure, SCENARIO_MODULE_FLAGS, type ReplayVerdict } from './replay-command.ts';
 import { scenarioFromArg } from './scenario-setup.ts';
 import type { ReplayReport } from './replay-session.ts';
 
-const BIN = fileURLToPath(new URL('../bin/taos-physics.js', import.meta.url));
+const BIN = join(PACKAGE_ROOT, 'bin', 'taos-physics.js');
 
 /** One replay's per-tick hashes and verdict, as verify sees it. */
 interface RunResult {
@@ -70,7 +70,7 @@ function replayInProcess(file: string, choice: ScenarioChoice): Promise<RunResul
 /** Replays in a worker thread of this process (its own Jolt instance). */
 function replayInWorker(file: string, choice: ScenarioChoice): Promise<RunResult> {
   return new Promise((resolve, reject) => {
-    const worker = new Worker(new URL(`./verify-worker${extname(fileURLToPath(import.meta.url))}`, import.meta.url), { workerData: { file, ...choice } });
+    const worker = new Worker(siblingModuleUrl(import.meta.url, 'verify-worker'), { workerData: { file, ...choice } });
     let settled = false;
     worker.once('message', (msg: { ok: true; report: ReplayReport } | { ok: false; error: string }) => {
       settled = true;

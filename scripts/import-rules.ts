@@ -1,6 +1,7 @@
 // The import rules `npm run lint` enforces: which area of the repository may import which (the table below, the
 // house plan of docs/architecture.md), the physics wrapper's two entry points, which packages browser-side code may
-// use, and that code bound for the browser never pulls in the physics engine, directly or through another module.
+// use, and that code bound for the browser never pulls in the physics engine, directly or through another module,
+// except through the one door it may: a dynamic import() of the physics chunk (client/physics/).
 import { dirname, join, normalize } from 'node:path';
 
 /** Areas by path prefix, most specific first: a file belongs to the first one its path starts with. */
@@ -11,7 +12,9 @@ const AREA_PREFIXES = [
   ['shared/protocol/', 'shared/protocol'],
   ['shared/', 'shared'],
   ['sdk/', 'sdk'],
+  ['client/physics/', 'client/physics'],
   ['client/', 'client'],
+  ['server/log/', 'server/log'],
   ['server/', 'server'],
   ['cli/', 'cli'],
   ['scenarios/', 'scenarios'],
@@ -19,6 +22,9 @@ const AREA_PREFIXES = [
   ['tests/', 'tests'],
   ['scripts/', 'scripts'],
   ['bin/', 'bin'],
+  ['api/client.ts', 'api/client'],
+  ['api/physics.ts', 'api/physics'],
+  ['api/', 'api'],
 ] as const;
 
 /** Every area. `shared` is the top-level modules of shared/ (clock.ts, byte-io.ts, tick-rate.ts). */
@@ -45,14 +51,23 @@ export const MAY_IMPORT: Readonly<Record<Area, readonly Area[] | '*'>> = {
   scenarios: ['shared/sim', 'shared/physics', ...SHARED_BASE],
   // The client library (browsers and Node): the protocol and the simulation's data.
   sdk: ['shared/protocol', 'shared/sim', ...SHARED_BASE],
-  // The page: the SDK and the data it hands over. Allowance point: when the page predicts its own player (issue 10),
-  // 'shared/physics' joins this list and build-client's engine check moves to a separate predicted bundle.
-  client: ['sdk', 'shared/protocol', 'shared/sim', ...SHARED_BASE],
+  // The page: the SDK and the data it hands over. It reaches client/physics/ (and so the engine) only by a dynamic
+  // import(), which the build turns into a separate chunk that a page loads when it needs the simulation.
+  client: ['client/physics', 'sdk', 'shared/protocol', 'shared/sim', ...SHARED_BASE],
+  // The physics chunk of the page: the browser's own Simulation (replay viewer, predicted play).
+  'client/physics': ['client', 'sdk', 'server/log', 'scenarios', 'shared/physics', 'shared/sim', 'shared/protocol', ...SHARED_BASE],
+  // The input log's format: pure codecs (the replay page reads logs with them) beside the Node file reader and writer.
+  'server/log': ['shared/sim', ...SHARED_BASE],
   // The server hosts simulations of the scenarios; it never imports the SDK, the page or the CLI.
-  server: ['scenarios', 'shared/physics', 'shared/sim', 'shared/protocol', ...SHARED_BASE],
+  server: ['server/log', 'scenarios', 'shared/physics', 'shared/sim', 'shared/protocol', ...SHARED_BASE],
   // The command line composes everything but the page.
-  cli: ['server', 'sdk', 'scenarios', 'shared/physics', 'shared/sim', 'shared/protocol', ...SHARED_BASE],
+  cli: ['server', 'server/log', 'sdk', 'scenarios', 'shared/physics', 'shared/sim', 'shared/protocol', ...SHARED_BASE],
   bin: ['cli'],
+  // The package's entry points: each re-exports a public surface. `taos-physics/client` is the SDK alone.
+  api: ['api/physics', 'server', 'server/log', 'cli', 'sdk', 'scenarios', 'shared/physics', 'shared/sim', 'shared/protocol', ...SHARED_BASE],
+  'api/client': ['sdk', 'shared/protocol', 'shared/sim', ...SHARED_BASE],
+  // `taos-physics/physics` for browsers: the wrapper alone (Node gets api/physics-node.ts).
+  'api/physics': ['shared/physics', ...SHARED_BASE],
   bench: '*',
   tests: '*',
   scripts: '*',
@@ -68,6 +83,9 @@ export const MAY_USE_PACKAGES: Readonly<Partial<Record<Area, readonly string[]>>
   scenarios: [],
   sdk: [],
   client: [],
+  'client/physics': [],
+  'api/client': [],
+  'api/physics': [],
 };
 
 /** Packages only these areas may import, wherever the importer is (tests and tools included). */
@@ -86,7 +104,7 @@ export const PHYSICS_ENTRY_POINTS: Readonly<Record<string, readonly Area[] | '*'
 const PHYSICS_INTERNALS_OPEN_TO: readonly Area[] = ['tests'];
 
 /** Areas whose code runs in the browser: no chain of runtime imports from them may reach the physics engine. */
-export const ENGINE_FREE: readonly Area[] = ['shared', 'shared/physics-data', 'shared/protocol', 'sdk', 'client'];
+export const ENGINE_FREE: readonly Area[] = ['shared', 'shared/physics-data', 'shared/protocol', 'sdk', 'client', 'api/client'];
 
 /** One source file: its repository-relative path (forward slashes) and text. */
 export interface SourceFile {
@@ -107,7 +125,12 @@ export interface ImportStatement {
   line: number;
   /** `import type` / `export type`: erased, it loads nothing at run time. */
   typeOnly: boolean;
+  /** `import('…')`: loaded when the code runs it; into client/physics/ it is a separate chunk. */
+  dynamic: boolean;
 }
+
+/** The area a page may load only by a dynamic import(): it carries the physics engine. */
+const LAZY_AREA: Area = 'client/physics';
 
 /** The area a repository path belongs to, or null (files at the top, e.g. vitest.config.ts). */
 export function areaOf(path: string): Area | null {
@@ -128,9 +151,9 @@ function lineAt(text: string, index: number): number {
 export function parseImports(text: string): ImportStatement[] {
   const out: ImportStatement[] = [];
   for (const m of text.matchAll(STATIC_IMPORT)) {
-    out.push({ specifier: m[2], line: lineAt(text, m.index + m[0].length - 1), typeOnly: m[1] !== undefined });
+    out.push({ specifier: m[2], line: lineAt(text, m.index + m[0].length - 1), typeOnly: m[1] !== undefined, dynamic: false });
   }
-  for (const m of text.matchAll(DYNAMIC_IMPORT)) out.push({ specifier: m[1], line: lineAt(text, m.index), typeOnly: false });
+  for (const m of text.matchAll(DYNAMIC_IMPORT)) out.push({ specifier: m[1], line: lineAt(text, m.index), typeOnly: false, dynamic: true });
   return out;
 }
 
@@ -183,12 +206,18 @@ export function checkImports(files: readonly SourceFile[]): ImportProblem[] {
         report(imp.line, `${area}/ may not import ${targetArea}/ (${target}); ${area}/ may import: ${may}`);
         continue;
       }
+      // Browser code crosses into the physics chunk only where it is split off: a dynamic import().
+      const lazy = targetArea === LAZY_AREA && area !== LAZY_AREA && ENGINE_FREE.includes(area);
+      if (lazy && !imp.dynamic && !imp.typeOnly) {
+        report(imp.line, `load ${target} with a dynamic import(): ${LAZY_AREA}/ carries the physics engine, and a static import ships it with every page`);
+        continue;
+      }
       if (targetArea === 'shared/physics' && area !== 'shared/physics' && !PHYSICS_INTERNALS_OPEN_TO.includes(area)) {
         const entry = PHYSICS_ENTRY_POINTS[target];
         if (entry === undefined) report(imp.line, `import the physics wrapper through shared/physics/index.ts, not ${target}`);
         else if (entry !== '*' && !entry.includes(area)) report(imp.line, `${target} is not public API: only ${entry.join(', ')} may import it`);
       }
-      if (ENGINE_FREE.includes(area) && !imp.typeOnly) {
+      if (ENGINE_FREE.includes(area) && !imp.typeOnly && !lazy) {
         const chain = targetArea === 'shared/physics' ? [target] : engineChain(target);
         if (chain) report(imp.line, `${area}/ must not pull in the physics engine: ${[file.path, ...chain].join(' → ')}`);
       }
@@ -218,6 +247,8 @@ function engineReach(imports: ReadonlyMap<string, ImportStatement[]>): (path: st
       for (const imp of imports.get(path) ?? []) {
         if (imp.typeOnly) continue;
         const target = resolve(path, imp.specifier);
+        // A dynamic import of the physics chunk is where the engine is allowed in: the chunk loads on demand.
+        if (imp.dynamic && target !== null && areaOf(target) === LAZY_AREA && areaOf(path) !== LAZY_AREA) continue;
         if (target === null) {
           if (packageOf(imp.specifier) === 'jolt-physics') {
             found = chainTo(path, 'jolt-physics');

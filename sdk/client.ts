@@ -15,6 +15,7 @@ import { Emitter } from './emitter.ts';
 import type { InputLeadOptions } from './input-sender.ts';
 import type { InterpolatedFrame, InterpolationOptions } from './interpolation.ts';
 import { LinkSession, type LinkClosedInfo, type SnapshotInfo } from './link-session.ts';
+import type { PredictedFrame, PredictionStats, PredictOptions } from './prediction/predict-session.ts';
 import { backoffDelayMs, isRetryable, reconnectPolicy, type ReconnectOptions, type ReconnectPolicy } from './reconnect-policy.ts';
 import type { TransportFactory } from './transport.ts';
 import { webSocketTransport } from './websocket-transport.ts';
@@ -49,6 +50,8 @@ export interface NetClientOptions {
   interpolation?: Partial<Omit<InterpolationOptions, 'tickRateHz' | 'snapshotRateHz'>>;
   /** Input lead tuning. */
   lead?: Partial<Omit<InputLeadOptions, 'tickRateHz'>>;
+  /** Predicted play: in rooms whose welcome says `netMode: 'predict'` the client runs the simulation itself. */
+  predict?: PredictOptions;
 }
 
 /** Lifecycle of a client: connecting → connected → (reconnecting → connecting → connected)* → closed. */
@@ -109,6 +112,8 @@ export interface NetClientStats {
   snapshotsFailed: number;
   lastSnapshotTick: number | null;
   reconnects: number;
+  /** Predicted play's numbers; null when this link does not predict (snapshot room, or no predict option). */
+  prediction: PredictionStats | null;
 }
 
 /** Room moves followed in a row (without a welcome between them) before the client gives up. */
@@ -263,9 +268,22 @@ export class NetClient {
     return frame ?? { view: null, renderTick: 0, mode: 'empty', bufferDepth: 0, delayMs: 0, targetDelayMs: 0, jitterMs: 0, extrapolatedTicks: 0 };
   }
 
-  /** The descriptor of a body (dynamic or static). */
+  /** The descriptor of a body (dynamic or static; while predicting, from the local simulation first). */
   descriptor(id: number): BodyDescriptor | undefined {
-    return this.dynamic.get(id) ?? this.welcomeMsg?.staticBodies.find((d) => d.id === id);
+    return this.connectedSession()?.prediction?.descriptor(id) ?? this.dynamic.get(id) ?? this.welcomeMsg?.staticBodies.find((d) => d.id === id);
+  }
+
+  /**
+   * The predicted world (smoothed poses of every body and character) while this client predicts, else null: draw
+   * sample() then. The own player's newest input is already in it.
+   */
+  predicted(): PredictedFrame | null {
+    return this.connectedSession()?.prediction?.frame() ?? null;
+  }
+
+  /** Stops predicting on this connection and goes back to interpolated snapshots (stats().prediction says why). */
+  stopPredicting(reason = 'stopped by the app'): void {
+    this.connectedSession()?.prediction?.fallBack(reason);
   }
 
   /** Descriptors of the non-static bodies known now, by id. */
@@ -295,6 +313,7 @@ export class NetClient {
       snapshotsFailed: this.session?.counters.snapshotsFailed ?? 0,
       lastSnapshotTick: s?.latestFrame?.tick ?? null,
       reconnects: this.reconnectCount,
+      prediction: s?.prediction?.stats() ?? null,
     };
   }
 
@@ -337,6 +356,7 @@ export class NetClient {
         // A seat is used once: only until the first welcome. Later links ask for the same player back instead.
         seatToken: this.welcomeMsg === null ? this.opts.seat : undefined,
         resumeToken: this.opts.resume !== false && this.resumeTokenValue !== null ? this.resumeTokenValue : undefined,
+        predict: this.opts.predict,
       },
       {
         welcome: (w) => this.session === session && this.onWelcome(w),

@@ -11,3 +11,6 @@ export { MemoryNetwork, type MemoryNetworkOptions, type MemoryPeer, type MemoryT
 export { backoffDelayMs, isRetryable, reconnectPolicy, type ReconnectOptions, type ReconnectPolicy } from './reconnect-policy.ts';
 export type { Transport, TransportFactory, TransportHandlers } from './transport.ts';
 export { ABNORMAL_CLOSE, webSocketTransport } from './websocket-transport.ts';
+export { Predictor, type AdvanceReport, type PredictorHandlers, type PredictSimulation } from './prediction/predictor.ts';
+export { PredictSession, type PredictedFrame, type PredictionStats, type PredictOptions, type PredictSetup } from './prediction/predict-session.ts';
+export { CorrectionSmoother, type BodyRead } from './prediction/smoothing.ts';

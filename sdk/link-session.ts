@@ -15,6 +15,7 @@ import type { BodyDescriptor, SimEvent } from '../shared/sim/types.ts';
 import { ClockSync } from './clock-sync.ts';
 import { InputLead, InputSender, type InputLeadOptions } from './input-sender.ts';
 import { InterpolationBuffer, type InterpolatedFrame, type InterpolationOptions } from './interpolation.ts';
+import { PredictSession, type PredictOptions } from './prediction/predict-session.ts';
 import type { Transport, TransportFactory } from './transport.ts';
 
 /** The input pump's period, in ticks. */
@@ -76,6 +77,8 @@ export interface LinkSessionOptions {
   seatToken?: string;
   /** Resume token of the previous link's welcome: ask for the same player back. */
   resumeToken?: string;
+  /** Predicted play in rooms that offer it. */
+  predict?: PredictOptions;
 }
 
 /** Counters of one link. */
@@ -112,6 +115,7 @@ export class LinkSession {
   private ended = false;
   private pingsSent = 0;
   private newestFrame: QuantizedFrame | null = null;
+  private predictSession: PredictSession | null = null;
   readonly counters: LinkCounters = { bytesIn: 0, bytesOut: 0, messagesIn: 0, snapshots: 0, snapshotsFailed: 0, inputMessages: 0, pings: 0, pongs: 0 };
   /** Recent (time, bytes) of received messages, for kbps. */
   private readonly inLog: Array<[number, number]> = [];
@@ -161,6 +165,11 @@ export class LinkSession {
   /** The newest decoded frame. */
   get latestFrame(): QuantizedFrame | null {
     return this.newestFrame;
+  }
+
+  /** Predicted play on this link (null: the room serves snapshots or the client did not ask to predict). */
+  get prediction(): PredictSession | null {
+    return this.predictSession;
   }
 
   /** The interpolation buffer (after welcome). */
@@ -219,6 +228,7 @@ export class LinkSession {
     if (this.ended) return;
     this.ended = true;
     this.clearTimers();
+    this.predictSession?.dispose();
     this.h.closed({ code, reason, welcomed: this.welcomeMsg !== null, bye: this.bye, errorBeforeWelcome: this.errorBeforeWelcome, byClient: this.closing });
   }
 
@@ -265,6 +275,14 @@ export class LinkSession {
         this.bye = m;
         this.h.bye(m);
         return;
+      case 'checkpoint':
+        if (this.predictSession) this.predictSession.onCheckpoint(m);
+        else this.h.protocolError('a checkpoint arrived although this client does not predict');
+        return;
+      case 'record':
+        if (this.predictSession) this.predictSession.onRecord(m);
+        else this.h.protocolError('a record arrived although this client does not predict');
+        return;
     }
   }
 
@@ -294,6 +312,15 @@ export class LinkSession {
     this.lead = new InputLead({ tickRateHz: w.tickRateHz, ...this.o.lead });
     this.interp = new InterpolationBuffer({ tickRateHz: w.tickRateHz, snapshotRateHz: w.snapshotRateHz, ...this.o.interpolation });
     this.h.welcome(w);
+    if (this.o.predict && w.netMode === 'predict') {
+      this.predictSession = new PredictSession(w, this.o.predict, {
+        send: (msg) => this.send(msg),
+        nowMs: () => this.o.clock.nowMs(),
+        events: (events) => this.h.events(events),
+        protocolError: (message) => this.h.protocolError(message),
+        fellBack: (reason) => this.h.protocolError(`prediction stopped, back to snapshots: ${reason}`),
+      });
+    }
     this.ping();
     this.pump();
   }
@@ -329,6 +356,8 @@ export class LinkSession {
         this.counters.inputMessages++;
         this.send(msg);
       }
+      // The local simulation runs to the newest tick the sender fixed: the own command of that tick is in it.
+      this.predictSession?.advance(this.sender.newestTick + 1, (t) => this.sender.commandFor(t));
     }
     this.schedule(sync.tickMs * PUMP_SPACING_TICKS, () => this.pump());
   }

@@ -16,6 +16,13 @@ export interface MemoryNetworkOptions {
   random?: () => number;
   /** Largest client→server message; a bigger one closes the link with 1009 as ws would. Default: unlimited. */
   maxPayloadBytes?: number;
+  /**
+   * Share of messages whose first transmission is lost, in [0, 1): as on TCP the message still arrives in order, one
+   * retransmission timeout later (and holds back those behind it). Default 0.
+   */
+  lossRate?: number;
+  /** Extra delay of a lost message (ms). Default: max(200, 2 × round trip), TCP's minimum retransmission timeout. */
+  retransmitMs?: number;
 }
 
 /** A client's end of a MemoryNetwork link: an ordinary Transport plus what protocol-level tests need. */
@@ -52,6 +59,8 @@ export class MemoryNetwork {
   readonly clock: Clock;
   private readonly latency: number;
   private readonly jitter: number;
+  private readonly lossRate: number;
+  private readonly retransmitMs: number;
   private readonly random: () => number;
   private readonly maxPayloadBytes: number;
   private readonly listeners = new Map<string, (peer: MemoryPeer) => void>();
@@ -62,6 +71,9 @@ export class MemoryNetwork {
     this.clock = clock;
     this.latency = opts.latencyMs ?? 0;
     this.jitter = opts.jitterMs ?? 0;
+    this.lossRate = opts.lossRate ?? 0;
+    if (!(this.lossRate >= 0 && this.lossRate < 1)) throw new Error('MemoryNetwork: lossRate must be in [0, 1)');
+    this.retransmitMs = opts.retransmitMs ?? Math.max(200, 4 * (this.latency + this.jitter));
     this.maxPayloadBytes = opts.maxPayloadBytes ?? Number.POSITIVE_INFINITY;
     if (!(this.latency >= 0) || !(this.jitter >= 0)) throw new Error('MemoryNetwork: latencyMs and jitterMs must be ≥ 0');
     let seed = 12345;
@@ -95,7 +107,8 @@ export class MemoryNetwork {
 
   private dueAt(dir: Direction): number {
     const now = this.clock.nowMs();
-    const due = Math.max(now + this.latency + (this.jitter > 0 ? this.random() * this.jitter : 0), dir.lastDueMs);
+    const lost = this.lossRate > 0 && this.random() < this.lossRate ? this.retransmitMs : 0;
+    const due = Math.max(now + this.latency + lost + (this.jitter > 0 ? this.random() * this.jitter : 0), dir.lastDueMs);
     dir.lastDueMs = due;
     return due - now;
   }

@@ -12,6 +12,7 @@ import {
   type ClientMessage,
   type HelloMessage,
   type ServerMessage,
+  NetMode,
 } from '../shared/protocol/index.ts';
 import { admitSeat, type SessionAccess } from './access/admission.ts';
 import type { ResumeHolder } from './access/resume-tokens.ts';
@@ -41,6 +42,8 @@ export interface SessionLimits {
   snapshotSkipBufferedBytes: number;
   /** Disconnect when this many bytes are queued (reliable messages cannot be dropped, nor queued without bound). */
   maxBufferedBytes: number;
+  /** Predict mode: checkpoints a client may ask for (netMode predict, resync); more are refused with rate-limited. */
+  resyncs?: RateLimit;
 }
 
 /**
@@ -57,6 +60,9 @@ export const DEFAULT_SESSION_LIMITS: Readonly<SessionLimits> = Object.freeze({
   snapshotSkipBufferedBytes: 256 * 1024,
   maxBufferedBytes: 8 * 1024 * 1024,
 });
+
+/** Default limit on checkpoints a client asks for: one a second. */
+export const DEFAULT_RESYNC_LIMIT: Readonly<RateLimit> = Object.freeze({ perSecond: 1, burst: 1 });
 
 /** What a session needs from the server. */
 export interface SessionContext {
@@ -98,6 +104,9 @@ export class ClientSession implements MemberSink, ResumeHolder {
   private readonly messageLimiter: RateLimiter;
   private readonly inputLimiter: RateLimiter;
   private readonly badLimiter: RateLimiter;
+  private readonly resyncLimiter: RateLimiter;
+  /** How this client is served: snapshots until a predicting client asks for predict mode. */
+  private delivery: NetMode = NetMode.Snapshot;
   private state: 'hello' | 'joining' | 'joined' | 'closed' = 'hello';
   private helloTimer: TimerHandle | null;
   private room: HostedRoom | null = null;
@@ -112,6 +121,7 @@ export class ClientSession implements MemberSink, ResumeHolder {
     this.messageLimiter = new RateLimiter(ctx.clock, ctx.limits.messages);
     this.inputLimiter = new RateLimiter(ctx.clock, ctx.limits.inputs);
     this.badLimiter = new RateLimiter(ctx.clock, ctx.limits.badMessages);
+    this.resyncLimiter = new RateLimiter(ctx.clock, ctx.limits.resyncs ?? DEFAULT_RESYNC_LIMIT);
     this.helloTimer = ctx.clock.setTimer(ctx.limits.helloTimeoutMs, () => {
       this.helloTimer = null;
       if (this.state === 'hello') this.end(ByeReason.Timeout, `no hello within ${ctx.limits.helloTimeoutMs} ms`, CloseCode.PolicyViolation);
@@ -233,7 +243,47 @@ export class ClientSession implements MemberSink, ResumeHolder {
       case 'bye':
         this.end(ByeReason.ClientBye, 'goodbye', CloseCode.Normal);
         return;
+      case 'resync':
+        if (this.state !== 'joined' || !this.seat || this.delivery !== NetMode.Predict) {
+          this.refuse(ErrorCode.UnexpectedMessage, 'resync is for clients served in predict mode');
+          return;
+        }
+        this.askPredict('resync asked for again too soon: at most one checkpoint per second');
+        return;
+      case 'netMode':
+        this.onNetMode(msg.mode);
+        return;
     }
+  }
+
+  /** A predicting client asks for predict mode (or falls back to snapshots); only a predict-mode room predicts. */
+  private onNetMode(mode: NetMode): void {
+    const seat = this.seat;
+    if (this.state !== 'joined' || !seat) {
+      this.refuse(ErrorCode.UnexpectedMessage, 'netMode before the welcome');
+      return;
+    }
+    if (mode === this.delivery) return;
+    if (mode === NetMode.Snapshot) {
+      this.delivery = mode;
+      seat.setNetMode(mode);
+      return;
+    }
+    if (seat.welcome.netMode !== NetMode.Predict) {
+      this.refuse(ErrorCode.UnexpectedMessage, `room ${seat.welcome.roomId} serves snapshots only`);
+      return;
+    }
+    this.askPredict('net mode switched back to predict too soon: at most one checkpoint per second');
+  }
+
+  /** Predict mode from the next tick, starting with a checkpoint: at most one a second. */
+  private askPredict(tooSoon: string): void {
+    if (!this.resyncLimiter.take()) {
+      this.refuse(ErrorCode.RateLimited, tooSoon);
+      return;
+    }
+    this.delivery = NetMode.Predict;
+    this.seat!.setNetMode(NetMode.Predict);
   }
 
   private onHello(hello: HelloMessage): void {

@@ -3,6 +3,7 @@
 import { resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
 import { getScenario, listScenarios } from '../scenarios/index.ts';
+import { scenarioSourceUrl } from '../shared/sim/define-scenario.ts';
 import type { ScenarioDefinition } from '../shared/sim/scenario.ts';
 import type { ScenarioSource } from './room-factory.ts';
 import { isScenarioPath, loadScenarioModule } from './scenario-module.ts';
@@ -46,9 +47,19 @@ export async function createServer(opts: CreateServerOptions = {}): Promise<Runn
   if (entries !== undefined && (!Array.isArray(entries) || entries.length === 0)) throw new Error('createServer: scenarios must be a non-empty array');
   const defs = entries === undefined ? [...listScenarios()] : await resolveScenarioEntries(entries);
   const source = scenarioSource(defs);
-  const modules = (entries ?? []).filter((e): e is string => typeof e === 'string' && isScenarioPath(e)).map((e) => pathToFileURL(resolve(e)).href);
-  if ((rest.roomWorkers ?? 0) > 0 && (entries ?? []).some((e) => typeof e !== 'string')) {
-    throw new Error('createServer: rooms in worker threads load scenarios from module files; give the scenarios as module paths (or built-in names), or set roomWorkers: 0');
+  // Rooms in worker threads import the scenarios' modules themselves (a definition holds functions, which cannot
+  // cross to a thread): module paths as given, definitions through the module that called defineScenario.
+  const modules: string[] = [];
+  for (const entry of entries ?? []) {
+    if (typeof entry === 'string') {
+      if (isScenarioPath(entry)) modules.push(pathToFileURL(resolve(entry)).href);
+      continue;
+    }
+    const url = scenarioSourceUrl(entry);
+    if (url !== null && url.startsWith('file:')) modules.push(url);
+    else if ((rest.roomWorkers ?? 0) > 0) {
+      throw new Error(`createServer: rooms in worker threads load scenarios from module files, and the module of scenario "${entry.name}" is unknown (make it with defineScenario in a module file, give its path, or set roomWorkers: 0)`);
+    }
   }
   return startServer({ ...rest, workerScenarioModules: [...(rest.workerScenarioModules ?? []), ...modules], scenarios: source, scenario: opts.scenario ?? (entries === undefined ? undefined : defs[0].name) });
 }

@@ -11,6 +11,7 @@ import { ClientSession, DEFAULT_SESSION_LIMITS, type SessionLimits } from './cli
 import { CloseCode, type ServerConnection } from './connection.ts';
 import { createLogger, type Logger } from './logger.ts';
 import { createMetrics, renderMergedMetrics, type ServerMetrics } from './metrics.ts';
+import type { NetModeRequest } from './net-mode-policy.ts';
 import type { RoomInfo } from './room.ts';
 import { RoomManager, type RoomDirectory, type RoomFactory } from './room-manager.ts';
 import type { WorkerPool } from './workers/worker-pool.ts';
@@ -36,6 +37,8 @@ export interface GameServerOptions {
   maxCatchUpTicks?: number;
   maxInputLeadTicks?: number;
   pauseWhenEmpty?: boolean;
+  /** Net mode of rooms not asked for one ('auto': predict where the cost estimate allows). Default 'auto'. */
+  netMode?: NetModeRequest;
   limits?: Partial<SessionLimits>;
   /** How long a player whose link dropped is held for a reconnect with its resume token (ms). Default 30 000; 0: off. */
   resumeGraceMs?: number;
@@ -99,6 +102,7 @@ export class GameServer {
       maxCatchUpTicks: opts.maxCatchUpTicks,
       maxInputLeadTicks: opts.maxInputLeadTicks,
       pauseWhenEmpty: opts.pauseWhenEmpty,
+      netMode: opts.netMode,
       host: this.workers,
       directory: opts.directory,
     });

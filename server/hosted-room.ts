@@ -1,7 +1,7 @@
 // What the main thread needs of a room wherever it runs: on this thread (Room) or in a room worker (RemoteRoom). The
 // session enters a room through a MemberSink (where the room's bytes for that member go) and gets a Seat back.
 import type { InputCommand } from '../shared/sim/input.ts';
-import type { WelcomeMessage } from '../shared/protocol/index.ts';
+import type { NetMode, WelcomeMessage } from '../shared/protocol/index.ts';
 import type { OfferResult } from './input-buffer.ts';
 import type { RoomInfo } from './room.ts';
 
@@ -37,6 +37,11 @@ export interface Seat {
   offerInput(tick: number, command: InputCommand): OfferResult | null;
   /** The client acknowledged the snapshot of `tick`. */
   acknowledge(tick: number): void;
+  /**
+   * Serves the member in `mode` from the next tick on (predict only in a predict-mode room: the welcome says). Asking
+   * for predict again is a resync: a fresh checkpoint goes out before the next record.
+   */
+  setNetMode(mode: NetMode): void;
   /** The room's tick counter as last seen on this thread. */
   serverTick(): number;
   /** Ticks on which this player's input had not arrived and the last one was repeated. */

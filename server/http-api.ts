@@ -46,15 +46,20 @@ function creationRefused(error: unknown, logger: Logger): HttpError {
 export function createHttpApi(opts: HttpApiOptions): HttpApi {
   const { game, scenarios } = opts;
 
-  // A room asked for by id that is already open: the same room when scenario and given parameters match, else 409.
-  const matchExisting = (room: HostedRoom, req: CreateRoomRequest, params: Readonly<Record<string, number>>): RoomInfo => {
+  // A room asked for by id that is already open: the same room when scenario, given parameters and net mode match,
+  // else 409. A room this request just opened keeps the mode its cost allowed (its netModeNote says why).
+  const matchExisting = (room: HostedRoom, req: CreateRoomRequest, params: Readonly<Record<string, number>>, opened = false): RoomInfo => {
     if (room.scenarioName !== req.scenario) {
       throw new HttpError(409, HttpErrorCode.RoomExists, `room ${quote(room.id)} is open with scenario ${quote(room.scenarioName)}, not ${quote(req.scenario)}`);
+    }
+    const info = room.info();
+    if (!opened && req.netMode !== undefined && req.netMode !== 'auto' && req.netMode !== info.netMode) {
+      throw new HttpError(409, HttpErrorCode.RoomExists, `room ${quote(room.id)} is open in ${info.netMode} mode, not ${req.netMode}${info.netModeNote ? ` (${info.netModeNote})` : ''}`);
     }
     for (const key of Object.keys(req.params ?? {})) {
       if (room.params[key] !== params[key]) throw new HttpError(409, HttpErrorCode.RoomExists, `room ${quote(room.id)} is open with ${key}=${room.params[key]}, not ${params[key]}`);
     }
-    return room.info();
+    return info;
   };
 
   return {
@@ -76,15 +81,15 @@ export function createHttpApi(opts: HttpApiOptions): HttpApi {
         throw new HttpError(400, HttpErrorCode.BadParam, error instanceof Error ? error.message : String(error));
       }
       if (req.roomId === undefined) {
-        const room = await game.rooms.resolve({ scenario: req.scenario, params: req.params }).catch((e: unknown) => Promise.reject(creationRefused(e, opts.logger)));
+        const room = await game.rooms.resolve({ scenario: req.scenario, params: req.params, netMode: req.netMode }).catch((e: unknown) => Promise.reject(creationRefused(e, opts.logger)));
         return { room: room.info(), created: true };
       }
       if (!isRoomId(req.roomId)) throw new HttpError(400, HttpErrorCode.BadRoomId, `room id must be 1-64 characters of A-Z a-z 0-9 _ -, got ${quote(req.roomId)}`);
       const existing = game.rooms.get(req.roomId);
       if (existing) return { room: matchExisting(existing, req, params), created: false };
-      const room = await game.rooms.create(req.roomId, req.scenario, req.params ?? {}).catch((e: unknown) => Promise.reject(creationRefused(e, opts.logger)));
+      const room = await game.rooms.create(req.roomId, req.scenario, req.params ?? {}, req.netMode).catch((e: unknown) => Promise.reject(creationRefused(e, opts.logger)));
       // Another request may have been opening the same id at the same moment: it must agree too.
-      return { room: matchExisting(room, req, params), created: true };
+      return { room: matchExisting(room, req, params, true), created: true };
     },
     async deleteRoom(id) {
       if (id === DEFAULT_ROOM_ID) throw new HttpError(409, HttpErrorCode.DefaultRoom, 'the default room stays open while the server runs');

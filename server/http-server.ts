@@ -7,6 +7,7 @@ import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import { sendRefusal, type Refusal } from './access/refusal.ts';
 import { parseSeatRequest, type SeatAnswer, type SeatRequest } from './access/seat-request.ts';
 import { HttpError, HttpErrorCode, sendError, sendJson } from './http-errors.ts';
+import { isNetModeRequest, type NetModeRequest } from './net-mode-policy.ts';
 import { RoomError, type RoomInfo } from './room.ts';
 
 /** What POST /api/rooms asks for. */
@@ -14,6 +15,8 @@ export interface CreateRoomRequest {
   scenario: string;
   params?: Record<string, number>;
   roomId?: string;
+  /** 'snapshot', 'predict' or 'auto' (default: the server's --net-mode). */
+  netMode?: NetModeRequest;
 }
 
 /** What the HTTP routes read and do. Methods refuse by throwing an HttpError (or a RoomError, mapped by its code). */
@@ -68,8 +71,8 @@ function readBody(req: IncomingMessage): Promise<string> {
   });
 }
 
-const CREATE_FIELDS = ['scenario', 'params', 'roomId'] as const;
-const CREATE_SHAPE = '{"scenario": "name", "params"?: {"key": number}, "roomId"?: "id"}';
+const CREATE_FIELDS = ['scenario', 'params', 'roomId', 'netMode'] as const;
+const CREATE_SHAPE = '{"scenario": "name", "params"?: {"key": number}, "roomId"?: "id", "netMode"?: "snapshot" | "predict" | "auto"}';
 
 /** Parses and type-checks a POST /api/rooms body; names the first unknown or mistyped field. */
 export function parseCreateRoom(text: string): CreateRoomRequest {
@@ -91,6 +94,10 @@ export function parseCreateRoom(text: string): CreateRoomRequest {
   if (o.roomId !== undefined) {
     if (typeof o.roomId !== 'string') throw new HttpError(400, HttpErrorCode.BadBody, '"roomId" must be a string');
     out.roomId = o.roomId;
+  }
+  if (o.netMode !== undefined) {
+    if (!isNetModeRequest(o.netMode)) throw new HttpError(400, HttpErrorCode.BadBody, '"netMode" must be "snapshot", "predict" or "auto"');
+    out.netMode = o.netMode;
   }
   if (o.params !== undefined) {
     if (o.params === null || typeof o.params !== 'object' || Array.isArray(o.params)) throw new HttpError(400, HttpErrorCode.BadBody, '"params" must be an object of numbers');

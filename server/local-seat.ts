@@ -9,7 +9,7 @@ import { buildWelcome } from './welcome.ts';
 
 /** Seats `sink` in `room` (throws RoomError when refused). Used by Room.enter and by the room worker. */
 export function enterRoom(room: Room, sink: MemberSink, entry: RoomEntry, metrics: ServerMetrics): Seat & { member: DeliveringMember } {
-  const member = new DeliveringMember(sink, room.snapshots, metrics);
+  const member = new DeliveringMember(sink, room.snapshots, metrics, room.predictFeed);
   let playerId: number;
   if ('resumePlayerId' in entry) {
     if (room.reattach(entry.resumePlayerId, member) === null) throw new RoomError(ErrorCode.RoomNotFound, `player ${entry.resumePlayerId} is no longer in room ${room.id}`);
@@ -19,13 +19,14 @@ export function enterRoom(room: Room, sink: MemberSink, entry: RoomEntry, metric
   }
   const built = buildWelcome(room, playerId, { token: null, graceMs: 0, resumed: 'resumePlayerId' in entry });
   member.encoder = built.encoder;
-  const encoder = built.encoder;
   return {
     member,
     playerId,
     welcome: built.message,
     offerInput: (tick, command) => room.offerInput(playerId, tick, command),
-    acknowledge: (tick) => encoder.acknowledge(tick),
+    // The member's current encoder: a fall back from predict mode starts a new one.
+    acknowledge: (tick) => member.encoder?.acknowledge(tick),
+    setNetMode: (mode) => void member.setNetMode(mode),
     serverTick: () => room.sim.tick,
     missedInputTicks: () => room.missedInputTicks(playerId),
   };

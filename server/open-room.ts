@@ -4,6 +4,7 @@ import type { Clock } from '../shared/clock.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
+import { decideNetMode } from './net-mode-policy.ts';
 import { Room, RoomError, type RoomRecorder } from './room.ts';
 import type { RoomFactory, RoomSimulationBuild, RoomSpec } from './room-manager.ts';
 
@@ -36,8 +37,13 @@ export async function openRoom(spec: RoomSpec, opts: OpenRoomOptions): Promise<R
     built.sim.destroy();
     throw new RoomError(ErrorCode.Internal, `cannot start the recording of room ${id}: ${error instanceof Error ? error.message : String(error)}`);
   }
+  const netModeRequested = spec.netMode ?? 'auto';
+  const decision = decideNetMode(netModeRequested, scenario, built.params);
   return new Room(built.sim, {
     id,
+    netMode: decision.mode,
+    netModeRequested,
+    netModeNote: decision.note,
     scenarioName: scenario,
     description: built.description,
     bounds: built.bounds,

@@ -6,6 +6,7 @@ import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { HostedRoom } from './hosted-room.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
+import type { NetModeRequest } from './net-mode-policy.ts';
 import { openRoom } from './open-room.ts';
 import { Room, RoomError, type RoomInfo, type RoomRecorder, type RoomSimulation } from './room.ts';
 
@@ -46,6 +47,8 @@ export interface RoomSpec {
   scenario: string;
   params: Readonly<Record<string, number>>;
   seed: number | string;
+  /** The net mode asked for (openRoom decides the room's mode from it and the scenario's cost). Default 'auto'. */
+  netMode?: NetModeRequest;
 }
 
 /** Fleet-wide room ids (server/fleet/): an id is claimed before its room opens and given back when it closes. */
@@ -85,6 +88,8 @@ export interface RoomManagerOptions {
   maxCatchUpTicks?: number;
   maxInputLeadTicks?: number;
   pauseWhenEmpty?: boolean;
+  /** Net mode of rooms not asked for one ('auto': predict where the cost estimate allows). Default 'auto'. */
+  netMode?: NetModeRequest;
   /** Where rooms are opened; default: on this thread through `factory`. */
   host?: RoomHost | null;
   /** With a fleet: where room ids are claimed fleet-wide (the default room is each process's own, never claimed). */
@@ -96,6 +101,8 @@ export interface RoomRequest {
   roomId?: string;
   scenario?: string;
   params?: Readonly<Record<string, number>>;
+  /** Net mode of a room this request opens (default: the server's). */
+  netMode?: NetModeRequest;
 }
 
 /** Owns every room of the process. */
@@ -180,7 +187,7 @@ export class RoomManager {
       if (scenario === undefined) {
         throw new RoomError(ErrorCode.RoomNotFound, `no room "${req.roomId}" (open rooms: ${this.all().map((r) => r.id).join(', ') || 'none'}; a scenario name opens a room of it)`);
       }
-      return this.create(req.roomId, scenario, req.params ?? {});
+      return this.create(req.roomId, scenario, req.params ?? {}, req.netMode);
     }
     if (req.scenario !== undefined) {
       // With a fleet another server may hold the next number already: its claim refuses ours, so try the next.
@@ -189,7 +196,7 @@ export class RoomManager {
         do id = `${req.scenario}-${this.nextRoomNumber++}`.slice(0, 64);
         while (this.rooms.has(id) || this.creating.has(id));
         try {
-          return await this.create(id, req.scenario, req.params ?? {});
+          return await this.create(id, req.scenario, req.params ?? {}, req.netMode);
         } catch (error) {
           if (!(error instanceof RoomError && error.code === ErrorCode.RoomMoved) || attempt >= 20) throw error;
         }
@@ -201,7 +208,7 @@ export class RoomManager {
   }
 
   /** Creates a room (shared by concurrent requests for the same id). Throws RoomError for limits and bad scenarios. */
-  create(id: string, scenario: string, params: Readonly<Record<string, number>>): Promise<HostedRoom> {
+  create(id: string, scenario: string, params: Readonly<Record<string, number>>, netMode?: NetModeRequest): Promise<HostedRoom> {
     if (this.closing) return Promise.reject(new RoomError(ErrorCode.Internal, 'the server is shutting down'));
     const existing = this.rooms.get(id);
     if (existing) return Promise.resolve(existing);
@@ -212,29 +219,29 @@ export class RoomManager {
       return Promise.reject(new RoomError(ErrorCode.ServerFull, `the server already runs its limit of ${maxRooms} rooms`));
     }
     if (!this.opts.factory.hasScenario(scenario)) return Promise.reject(new RoomError(ErrorCode.BadMessage, `unknown scenario "${scenario}"`));
-    const promise = this.build(id, scenario, params).finally(() => this.creating.delete(id));
+    const promise = this.build({ id, scenario, params, seed: this.opts.seed ?? 1, netMode: netMode ?? this.opts.netMode ?? 'auto' }).finally(() => this.creating.delete(id));
     this.creating.set(id, promise);
     return promise;
   }
 
-  private async build(id: string, scenario: string, params: Readonly<Record<string, number>>): Promise<HostedRoom> {
-    const directory = id === DEFAULT_ROOM_ID ? undefined : this.opts.directory;
-    if (!directory) return this.buildClaimed(id, scenario, params);
-    await directory.claim(id);
+  private async build(spec: RoomSpec): Promise<HostedRoom> {
+    const directory = spec.id === DEFAULT_ROOM_ID ? undefined : this.opts.directory;
+    if (!directory) return this.buildClaimed(spec);
+    await directory.claim(spec.id);
     try {
-      const room = await this.buildClaimed(id, scenario, params);
-      room.onClose(() => directory.release(id));
-      directory.opened(id);
+      const room = await this.buildClaimed(spec);
+      room.onClose(() => directory.release(spec.id));
+      directory.opened(spec.id);
       return room;
     } catch (error) {
-      directory.release(id);
+      directory.release(spec.id);
       throw error;
     }
   }
 
-  private async buildClaimed(id: string, scenario: string, params: Readonly<Record<string, number>>): Promise<HostedRoom> {
-    const seed = this.opts.seed ?? 1;
-    const room = this.opts.host ? await this.opts.host.open({ id, scenario, params, seed }) : await this.buildHere(id, scenario, params, seed);
+  private async buildClaimed(spec: RoomSpec): Promise<HostedRoom> {
+    const { id, scenario } = spec;
+    const room = this.opts.host ? await this.opts.host.open(spec) : await openRoom(spec, this.opts);
     this.rooms.set(id, room);
     this.opts.metrics.rooms.set(this.rooms.size);
     room.onClose(() => {
@@ -247,13 +254,10 @@ export class RoomManager {
       this.armEmptyTimer(room);
     }
     room.start();
-    this.opts.logger.info({ room: id, scenario, params: room.params }, 'room opened');
+    const info = room.info();
+    this.opts.logger.info({ room: id, scenario, params: room.params, netMode: info.netMode, netModeNote: info.netModeNote }, 'room opened');
     for (const fn of this.openedListeners) fn(room);
     return room;
-  }
-
-  private buildHere(id: string, scenario: string, params: Readonly<Record<string, number>>, seed: number | string): Promise<Room> {
-    return openRoom({ id, scenario, params, seed }, this.opts);
   }
 
   private armEmptyTimer(room: HostedRoom): void {

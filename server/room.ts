@@ -5,10 +5,13 @@ import type { Clock } from '../shared/clock.ts';
 import { BODY_STATE_STRIDE, BodyFlag, type Vec3Like } from '../shared/physics/index.ts';
 import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '../shared/sim/types.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
+import { NetMode } from '../shared/protocol/predict-messages.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import type { HostedRoom, MemberSink, RoomEntry, Seat } from './hosted-room.ts';
 import { InputBuffer, OfferResult } from './input-buffer.ts';
+import type { NetModeRequest } from './net-mode-policy.ts';
+import { PredictFeed } from './predict-feed.ts';
 import { enterRoom } from './local-seat.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
@@ -77,6 +80,8 @@ export interface RoomMember {
   roomClosed(reason: string): void;
   /** The room removed this member (its delivery failed); the room goes on. */
   removed(reason: string): void;
+  /** Predict mode: the framed confirmed record of `tick` (every tick, in order). */
+  deliverRecord?(tick: number, message: Uint8Array): void;
 }
 
 /** A refusal with a stable code the session forwards to the client. */
@@ -115,6 +120,12 @@ export interface RoomOptions {
   /** Stop ticking while nobody is in the room. Default true. */
   pauseWhenEmpty?: boolean;
   recorder?: RoomRecorder | null;
+  /** How the room serves its members (decided by net-mode-policy.ts). Default snapshot. */
+  netMode?: NetMode;
+  /** The mode the room was asked for. Default: netMode. */
+  netModeRequested?: NetModeRequest;
+  /** Why the room serves snapshots although predict was asked for or allowed. */
+  netModeNote?: string | null;
 }
 
 /** What a successful join gives the member. */
@@ -134,6 +145,10 @@ export interface RoomInfo {
   tick: number;
   bodies: number;
   params: Readonly<Record<string, number>>;
+  /** 'snapshot' or 'predict'. */
+  netMode: NetMode;
+  /** Why the room serves snapshots although predict was asked for or allowed (absent otherwise). */
+  netModeNote?: string;
 }
 
 interface Player {
@@ -163,6 +178,12 @@ export class Room implements HostedRoom {
   readonly tickClock: TickClock;
   /** The members' shared snapshot and event work (format, quantized frame, framed messages). */
   readonly snapshots: SnapshotFanOut;
+  /** How the room serves its members. */
+  readonly netMode: NetMode;
+  /** The mode the room was asked for ('auto' lets the cost estimate choose). */
+  readonly netModeRequested: NetModeRequest;
+  /** Predict mode's record stream and checkpoints (null in snapshot mode). */
+  readonly predictFeed: PredictFeed | null;
   private readonly opts: RoomOptions;
   private readonly players = new Map<number, Player>();
   private pendingLeaves: number[] = [];
@@ -190,6 +211,14 @@ export class Room implements HostedRoom {
     this.bounds = opts.bounds ?? { min: { x: -500, y: -500, z: -500 }, max: { x: 500, y: 500, z: 500 } };
     this.params = opts.params;
     this.seed = opts.seed;
+    this.netMode = opts.netMode ?? NetMode.Snapshot;
+    this.netModeRequested = opts.netModeRequested ?? this.netMode;
+    this.predictFeed = null;
+    if (this.netMode === NetMode.Predict) {
+      const save = sim.saveCheckpointBytes?.bind(sim);
+      if (!save) throw new Error(`room ${opts.id}: predict mode needs a simulation with saveCheckpointBytes()`);
+      this.predictFeed = new PredictFeed({ get tick() { return sim.tick; }, stateHash: () => sim.stateHash(), saveCheckpointBytes: save }, opts.seed);
+    }
     this.snapshots = new SnapshotFanOut({ bounds: this.bounds, isSceneStatic: (id) => this.isSceneStatic(id), describe: (id) => sim.bodyDescriptor(id) ?? undefined });
     const initial = sim.readBodyStates();
     this.lastBodyCount = initial.count;
@@ -265,7 +294,9 @@ export class Room implements HostedRoom {
 
   /** The room's summary. */
   info(): RoomInfo {
-    return { id: this.id, scenario: this.scenarioName, clients: this.players.size, tick: this.sim.tick, bodies: this.lastBodyCount, params: this.params };
+    const info: RoomInfo = { id: this.id, scenario: this.scenarioName, clients: this.players.size, tick: this.sim.tick, bodies: this.lastBodyCount, params: this.params, netMode: this.netMode };
+    if (this.opts.netModeNote) info.netModeNote = this.opts.netModeNote;
+    return info;
   }
 
   /** Adds a member as a new player; its join goes into the next tick's record. Throws RoomError when refused. */
@@ -410,7 +441,7 @@ export class Room implements HostedRoom {
     }
     m.ticks.inc();
     if (this.players.size === 0 && (this.opts.pauseWhenEmpty ?? true) && this.pendingLeaves.length === 0) this.tickClock.stop();
-    const send = this.deliver(tick, events);
+    const send = this.deliver(tick, events, this.predictFeed?.frame(record) ?? null);
     if (this.opts.recorder?.release) this.opts.recorder.release(tick, send);
     else send();
     for (const fn of this.tickListeners) fn(record, events);
@@ -421,7 +452,7 @@ export class Room implements HostedRoom {
   }
 
   /** Does the tick's bookkeeping now and returns what sends its events and frame (possibly later, see release). */
-  private deliver(tick: number, events: readonly SimEvent[]): () => void {
+  private deliver(tick: number, events: readonly SimEvent[], recordMessage: Uint8Array | null): () => void {
     for (const e of events) if (e.type === 'bodyRemoved') this.sceneStatics.delete(e.bodyId); // its id may be reused
     let frame: WorldFrame | null = null;
     this.snapshotAccumulator += this.opts.snapshotRateHz;
@@ -446,6 +477,7 @@ export class Room implements HostedRoom {
     return () => {
       if (this.closed) return;
       const members = [...this.players.values()].filter((p): p is Player & { member: RoomMember } => p.member !== null);
+      if (recordMessage !== null) for (const p of members) this.safely(p, () => p.member.deliverRecord?.(tick, recordMessage));
       if (events.length > 0) for (const p of members) this.safely(p, () => p.member.deliverEvents(tick, events));
       if (frame) for (const p of members) this.safely(p, () => p.member.deliverFrame(frame));
     };

@@ -1,10 +1,11 @@
 // Starts the networked server on one port: HTTP routes + static client + WebSocket gateway around a GameServer whose
 // rooms run the registered scenarios; close(reason) shuts it all down in order (byes, rooms, recordings, sockets, logs).
 import './physics-node.ts';
+import type { IncomingMessage, ServerResponse } from 'node:http';
 import type { AddressInfo } from 'node:net';
+import type { NetModeRequest } from './net-mode-policy.ts';
 import { createSecureContext } from 'node:tls';
-import { dirname, join, resolve } from 'node:path';
-import { fileURLToPath } from 'node:url';
+import { join } from 'node:path';
 import { DEFAULT_SCENARIO, listScenarios } from '../scenarios/index.ts';
 import type { Clock } from '../shared/clock.ts';
 import { MAX_CLIENT_MESSAGE_BYTES } from '../shared/protocol/index.ts';
@@ -22,15 +23,16 @@ import { ConnectionPolicy, type ConnectionPolicyOptions } from './connection-pol
 import { createTcpGate, Tarpit, type TarpitOptions } from './tcp-gate.ts';
 import { createLogger, flushLogger, type Logger } from './logger.ts';
 import { createMetrics, type ServerMetrics } from './metrics.ts';
+import { PACKAGE_ROOT } from './package-root.ts';
 import { createRoomFactory, type ScenarioSource } from './room-factory.ts';
 import type { DurabilityOptions } from './recorder.ts';
+import { checkReplayLog, withReplayLog } from './replay-log.ts';
 import { createStaticHandler } from './static-files.ts';
 import { attachWsGateway } from './ws-gateway.ts';
 import { WorkerPool } from './workers/worker-pool.ts';
 
-const REPO_ROOT = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 /** Where the built browser client is served from by default. */
-export const DEFAULT_CLIENT_DIR = join(REPO_ROOT, 'dist', 'client');
+export const DEFAULT_CLIENT_DIR = join(PACKAGE_ROOT, 'dist', 'client');
 
 /** Options of startServer (the serve command's flags plus test hooks). */
 export interface StartServerOptions extends AccessOptions {
@@ -44,6 +46,8 @@ export interface StartServerOptions extends AccessOptions {
   seed?: number | string;
   /** Snapshots per second per client (1–60). Default 30. */
   snapshotRateHz?: number;
+  /** Net mode of rooms not asked for one ('auto': predict where the cost estimate allows). Default 'auto'. */
+  netMode?: NetModeRequest;
   /** Record every room's input log here. */
   recordDir?: string | null;
   /** A state hash record in recordings every N ticks (default 60; 1 checks every tick on replay). */
@@ -59,6 +63,11 @@ export interface StartServerOptions extends AccessOptions {
   emptyRoomGraceMs?: number;
   /** Directory of the built client. Default dist/client. */
   clientDir?: string;
+  /** An input log the replay viewer (/replay) opens: served at /replay.taoslog. */
+  replayFile?: string;
+  /** A game's own page folder, served before the built client (its index.html replaces the stock page; the stock
+   *  files, /kit.js among them, stay reachable where the folder has no file of that name). */
+  pageDir?: string;
   clock?: Clock;
   logger?: Logger;
   metrics?: ServerMetrics;
@@ -141,6 +150,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   const port = opts.port ?? 8080;
   const host = opts.host ?? '127.0.0.1';
   if (!Number.isInteger(port) || port < 0 || port > 65535) throw new Error(`port must be an integer in [0, 65535], got ${port}`);
+  if (opts.replayFile) await checkReplayLog(opts.replayFile);
   const access = createServerAccess(opts, metrics, logger);
   if (opts.tls) checkTls(opts.tls);
   const policy = new ConnectionPolicy(clock, { maxSockets: opts.maxConnections ?? 256, ...opts.connectionPolicy });
@@ -176,6 +186,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     metrics,
     logger,
     snapshotRateHz: opts.snapshotRateHz,
+    netMode: opts.netMode,
     maxClientsPerRoom: opts.maxClients,
     maxConnections: opts.maxConnections,
     maxRooms: opts.maxRooms,
@@ -187,7 +198,10 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     directory: fleet ?? undefined,
   });
 
-  const staticFiles = createStaticHandler(opts.clientDir ?? DEFAULT_CLIENT_DIR);
+  const stockFiles = createStaticHandler(opts.clientDir ?? DEFAULT_CLIENT_DIR);
+  const pageFiles = opts.pageDir === undefined ? null : createStaticHandler(opts.pageDir, true);
+  const clientFiles = pageFiles === null ? stockFiles : async (req: IncomingMessage, res: ServerResponse) => (await pageFiles(req, res)) || stockFiles(req, res);
+  const staticFiles = opts.replayFile ? withReplayLog(opts.replayFile, clientFiles) : clientFiles;
   const http = createHttpServer(
     createHttpApi({ game, scenarios, metrics, logger, access, staticFiles, fleet: fleet ?? undefined }),
     (error) => logger.error({ err: error }, 'HTTP request failed'),

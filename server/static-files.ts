@@ -1,5 +1,6 @@
 // Serves the built browser client (a directory of static files) over HTTP GET/HEAD, refusing paths that escape it,
-// and answers with a clear text page when the client has not been built yet.
+// and answers with a clear text page when the client has not been built yet. `/name` serves `name.html` when there
+// is no file `name`; files under chunks/ carry a content hash in their names and are cached for good.
 import { createReadStream, type Stats } from 'node:fs';
 import { stat } from 'node:fs/promises';
 import type { IncomingMessage, ServerResponse } from 'node:http';
@@ -20,6 +21,11 @@ const CONTENT_TYPES: Readonly<Record<string, string>> = {
   '.png': 'image/png',
   '.ico': 'image/x-icon',
 };
+
+/** Where the build puts content-hashed files (split chunks, Jolt's .wasm): their bytes never change under a name. */
+const IMMUTABLE_PREFIX = '/chunks/';
+/** cache-control of content-hashed files. */
+export const IMMUTABLE_CACHE_CONTROL = 'public, max-age=31536000, immutable';
 
 /** The page served at / when the client directory has no index.html. */
 export function notBuiltPage(rootDir: string): string {
@@ -42,8 +48,11 @@ async function fileStats(path: string): Promise<Stats | null> {
   }
 }
 
-/** A request handler for static files under `rootDir`; resolves true when it answered the request. */
-export function createStaticHandler(rootDir: string): (req: IncomingMessage, res: ServerResponse) => Promise<boolean> {
+/**
+ * A request handler for static files under `rootDir`; resolves true when it answered the request. With
+ * `fallThrough`, a missing file is left to the next handler (resolves false) instead of answered 404.
+ */
+export function createStaticHandler(rootDir: string, fallThrough = false): (req: IncomingMessage, res: ServerResponse) => Promise<boolean> {
   const root = resolve(rootDir);
   return async (req, res) => {
     if (req.method !== 'GET' && req.method !== 'HEAD') return false;
@@ -69,8 +78,12 @@ export function createStaticHandler(rootDir: string): (req: IncomingMessage, res
     if (info?.isDirectory()) {
       path = resolve(full, 'index.html');
       info = await fileStats(path);
+    } else if (!info && extname(full) === '' && full !== root) {
+      path = `${full}.html`;
+      info = await fileStats(path);
     }
     if (!info || !info.isFile()) {
+      if (fallThrough) return false;
       if (pathname === '/' || pathname === '/index.html') {
         res.writeHead(503, { 'content-type': 'text/plain; charset=utf-8', 'cache-control': 'no-store' });
         res.end(req.method === 'HEAD' ? undefined : notBuiltPage(root));
@@ -82,7 +95,7 @@ export function createStaticHandler(rootDir: string): (req: IncomingMessage, res
     res.writeHead(200, {
       'content-type': CONTENT_TYPES[extname(path).toLowerCase()] ?? 'application/octet-stream',
       'content-length': info.size,
-      'cache-control': 'no-cache',
+      'cache-control': pathname.startsWith(IMMUTABLE_PREFIX) ? IMMUTABLE_CACHE_CONTROL : 'no-cache',
       'x-content-type-options': 'nosniff',
     });
     if (req.method === 'HEAD') {

@@ -38,6 +38,7 @@ export function buildWelcome(room: Room, playerId: number, resume: { token: stri
     resumeToken: resume.token,
     resumeGraceMs: resume.graceMs,
     resumed: resume.resumed,
+    netMode: room.netMode,
   };
   return { message, encoder };
 }

@@ -80,6 +80,14 @@ export const FIGURES: readonly FigureSpec[] = Object.freeze([
     module: 'figures/engine-peer.ts',
   },
   {
+    name: 'predicted-play',
+    title: 'predicted play',
+    detailKey: 'predictedPlay',
+    headlineKeys: ['keyToMotionMsPredict', 'keyToMotionMsSnapshot', 'kbpsPredict4', 'kbpsPredict16', 'rollbackDepthP99', 'resimMsP99', 'desyncsPerHour'],
+    timeLimitMs: (quick: boolean) => (quick ? min(4) : min(9)),
+    module: 'figures/predicted-play.ts',
+  },
+  {
     name: 'startup',
     title: 'start-up',
     detailKey: 'startup',
@@ -131,5 +139,12 @@ export const HEADLINE_KEYS: readonly string[] = [
   'durabilityOffP99Ms',
   'logBytesPerMinute',
   'startupMs',
+  'keyToMotionMsPredict',
+  'keyToMotionMsSnapshot',
+  'kbpsPredict4',
+  'kbpsPredict16',
+  'rollbackDepthP99',
+  'resimMsP99',
+  'desyncsPerHour',
   'redirectWelcomeMs',
 ];

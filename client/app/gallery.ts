@@ -98,6 +98,7 @@ async function start(): Promise<void> {
     sensors: [],
     events: [],
     net: { rttMs: 0, snapshotsPerSecond: 0, kbpsIn: 0, interpolationDelayMs: 0, bufferDepth: 0, inputLeadTicks: 0 },
+    keyToMotion: null,
     camera: null,
   }));
 

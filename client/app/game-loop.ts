@@ -4,6 +4,7 @@ import { FollowCamera, OrbitCamera } from '../render/camera.ts';
 import type { CameraView } from '../render/renderer.ts';
 import type { Renderer } from '../render/renderer.ts';
 import { FrameTimer } from './frame-timer.ts';
+import { KeyToMotionMeter } from './motion-meter.ts';
 import type { Hud } from './hud.ts';
 import type { InputController } from './input-controller.ts';
 import { NetHistory } from './net-history.ts';
@@ -30,6 +31,8 @@ export interface LoopState {
 export class GameLoop {
   readonly timer = new FrameTimer();
   readonly history: NetHistory;
+  /** Key → own character moving on screen. */
+  readonly motion = new KeyToMotionMeter();
   readonly state: LoopState = { framesRendered: 0, firstFrameMs: null, renderTick: 0, bufferDepth: 0, delayMs: 0, view: null, following: false, camera: null };
   /** Force the orbit camera even when we have a character (V toggles it). */
   orbitOnly = false;
@@ -63,6 +66,11 @@ export class GameLoop {
 
   /** Starts rendering and sending input at the tick rate. */
   start(): void {
+    // A movement key is handed to the library at once (not at the next 60 Hz sample), and starts a latency measurement.
+    this.input.onMoveKeyDown = (atMs) => {
+      this.session.setInput(this.input.sample(atMs));
+      this.motion.keyDown(atMs, this.state.framesRendered);
+    };
     this.rafId = requestAnimationFrame((t) => this.frame(t));
     const intervalMs = 1000 / this.welcome.tickRateHz;
     this.inputTimer = setInterval(() => this.session.setInput(this.input.sample()), intervalMs);
@@ -71,6 +79,7 @@ export class GameLoop {
   /** Stops the loop (the last frame stays on screen). */
   stop(): void {
     this.stopped = true;
+    this.input.onMoveKeyDown = null;
     cancelAnimationFrame(this.rafId);
     if (this.inputTimer !== null) clearInterval(this.inputTimer);
     this.inputTimer = null;
@@ -126,6 +135,7 @@ export class GameLoop {
     s.camera = { ...camera, widthPx: stats.widthPx, heightPx: stats.heightPx };
     s.framesRendered++;
     if (s.firstFrameMs === null && f.view) s.firstFrameMs = performance.now();
+    this.motion.frameDrawn(performance.now(), s.framesRendered, f.renderTick, mine ? [mine.position.x, mine.position.y, mine.position.z] : null);
     const timing = this.timer.summary();
     this.hud.refresh(nowMs, {
       room: `${this.welcome.roomId} (${this.welcome.scenario.name})`,

@@ -46,6 +46,8 @@ export class InputController {
   /** The browser refused pointer lock: clicks fire without it and a right-drag looks. */
   private lockRefused = false;
   private readonly listeners: Array<[EventTarget, string, EventListener]> = [];
+  /** Called when a movement key goes down (not on auto-repeat), after the key is applied: sample() includes it. */
+  onMoveKeyDown: ((atMs: number) => void) | null = null;
 
   constructor(element: HTMLElement) {
     this.element = element;
@@ -130,7 +132,9 @@ export class InputController {
     if (!this.enabled || e.ctrlKey || e.metaKey || e.altKey) return;
     const target = e.target as HTMLElement | null;
     if (target && (target.tagName === 'INPUT' || target.tagName === 'TEXTAREA' || target.isContentEditable)) return;
-    if (this.press(e.code, down)) e.preventDefault();
+    if (!this.press(e.code, down)) return;
+    e.preventDefault();
+    if (down && !e.repeat && e.code in MOVE_KEYS) this.onMoveKeyDown?.(performance.now());
   }
 
   /** Applies a key (a KeyboardEvent.code) going down or up; returns false for keys that control nothing. */

@@ -65,6 +65,7 @@ function hookState(): TaosState {
       bufferDepth: s?.bufferDepth ?? 0,
       inputLeadTicks: page.session?.inputLeadTicks ?? 0,
     },
+    keyToMotion: loop?.motion.last ? { ...loop.motion.last, count: loop.motion.count } : null,
     camera: s?.camera ? { ...s.camera, eye: [...s.camera.eye], target: [...s.camera.target] } : null,
   };
 }

@@ -46,6 +46,8 @@ export interface TaosState {
   /** Recent event lines as shown in the feed. */
   events: string[];
   net: { rttMs: number; snapshotsPerSecond: number; kbpsIn: number; interpolationDelayMs: number; bufferDepth: number; inputLeadTicks: number };
+  /** The last key → own motion measured (client/app/motion-meter.ts), and how many were measured. */
+  keyToMotion: { frames: number; ms: number; staleFrames: number; count: number } | null;
   /** The camera of the last frame (null before one), with the canvas size it was drawn at (device pixels). */
   camera: { eye: number[]; target: number[]; fovYRadians: number; nearMetres: number; farMetres: number; widthPx: number; heightPx: number } | null;
 }

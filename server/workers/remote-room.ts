@@ -2,6 +2,7 @@
 // the worker's notices), its last reported tick and load, and seats whose inputs and acks travel to the worker in the
 // thread's next traffic flush.
 import type { InputCommand } from '../../shared/sim/input.ts';
+import type { NetMode } from '../../shared/protocol/predict-messages.ts';
 import type { HostedRoom, MemberSink, RoomEntry, Seat } from '../hosted-room.ts';
 import type { RoomInfo } from '../room.ts';
 import type { EnteredRoom, RoomStatus } from './worker-protocol.ts';
@@ -19,6 +20,8 @@ export interface RoomThreadLink {
   close(room: string, reason: string): Promise<void>;
   queueInput(member: number, tick: number, command: InputCommand): void;
   queueAck(member: number, tick: number): void;
+  /** Serve the member in predict mode (again: a resync) or on snapshots. */
+  queueNetMode(member: number, mode: NetMode): void;
 }
 
 /** A room hosted by a worker thread. */
@@ -112,6 +115,7 @@ export class RemoteRoom implements HostedRoom {
         return null;
       },
       acknowledge: (tick) => thread.queueAck(member, tick),
+      setNetMode: (mode) => thread.queueNetMode(member, mode),
       serverTick: () => this.lastTick,
       missedInputTicks: () => {
         const missed = this.lastStatus?.missedInputTicks ?? [];

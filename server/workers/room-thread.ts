@@ -4,12 +4,14 @@
 import { Worker } from 'node:worker_threads';
 import type { InputCommand } from '../../shared/sim/input.ts';
 import { ErrorCode } from '../../shared/protocol/opcodes.ts';
+import { NetMode } from '../../shared/protocol/predict-messages.ts';
 import type { MemberSink, RoomEntry } from '../hosted-room.ts';
 import type { Logger } from '../logger.ts';
 import { RoomError } from '../room.ts';
 import type { RoomSpec } from '../room-manager.ts';
 import { RemoteRoom, type RoomThreadLink } from './remote-room.ts';
 import { forEachSend, type EnteredRoom, type FromWorker, type MemberTraffic, type OpenedRoom, type ToWorker, type WorkerInit } from './worker-protocol.ts';
+import { siblingModuleUrl } from '../package-root.ts';
 
 /** Members of every thread share one numbering (a member id is never reused in a process). */
 let nextMemberId = 1;
@@ -25,7 +27,7 @@ interface Pending {
   reject(error: Error): void;
 }
 
-const emptyTraffic = (): MemberTraffic => ({ inputs: [], acks: [], pressure: [] });
+const emptyTraffic = (): MemberTraffic => ({ inputs: [], acks: [], pressure: [], netModes: [] });
 
 /** A started room worker. */
 export class RoomThread implements RoomThreadLink {
@@ -52,7 +54,7 @@ export class RoomThread implements RoomThreadLink {
     this.index = init.index;
     this.logger = logger;
     this.onDied = onDied;
-    this.worker = new Worker(new URL('./room-worker.ts', import.meta.url), { workerData: init, name: `room-worker-${init.index}` });
+    this.worker = new Worker(siblingModuleUrl(import.meta.url, 'room-worker'), { workerData: init, name: `room-worker-${init.index}` });
     this.worker.on('message', (msg: FromWorker) => this.receive(msg));
     this.worker.on('error', (error) => this.died(`it threw ${error instanceof Error ? error.message : String(error)}`, error));
     this.worker.on('exit', (code) => this.died(`it exited with code ${code}`, null));
@@ -139,6 +141,11 @@ export class RoomThread implements RoomThreadLink {
     this.scheduleFlush();
   }
 
+  queueNetMode(member: number, mode: NetMode): void {
+    this.traffic.netModes.push(member, mode === NetMode.Predict ? 1 : 0);
+    this.scheduleFlush();
+  }
+
   private request(msg: Extract<ToWorker, { req: number }>): Promise<unknown> {
     if (this.deadReason !== null) return Promise.reject(new RoomError(ErrorCode.Internal, `room worker ${this.index} has stopped: ${this.deadReason}`));
     const req = this.nextReq++;
@@ -159,7 +166,7 @@ export class RoomThread implements RoomThreadLink {
       this.flushPending = false;
       const traffic = this.traffic;
       this.traffic = emptyTraffic();
-      if (traffic.inputs.length + traffic.acks.length + traffic.pressure.length > 0) this.post({ t: 'traffic', traffic });
+      if (traffic.inputs.length + traffic.acks.length + traffic.pressure.length + traffic.netModes.length > 0) this.post({ t: 'traffic', traffic });
     });
   }
 

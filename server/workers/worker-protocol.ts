@@ -7,6 +7,7 @@ import type { ErrorCode } from '../../shared/protocol/opcodes.ts';
 import type { DeliveryKind, RoomEntry } from '../hosted-room.ts';
 import type { RoomInfo } from '../room.ts';
 import type { DurabilityOptions } from '../recorder.ts';
+import type { NetModeRequest } from '../net-mode-policy.ts';
 
 /** Room settings every room of a worker shares (the serve flags). */
 export interface WorkerRoomConfig {
@@ -56,7 +57,7 @@ export const STATUS_INTERVAL_MS = 250;
 
 /** Main → worker. `req` numbers a request whose answer is a `reply` with the same number. */
 export type ToWorker =
-  | { t: 'open'; req: number; id: string; scenario: string; params: Readonly<Record<string, number>>; seed: number | string }
+  | { t: 'open'; req: number; id: string; scenario: string; params: Readonly<Record<string, number>>; seed: number | string; netMode?: NetModeRequest }
   | { t: 'enter'; req: number; room: string; member: number; entry: RoomEntry }
   | { t: 'leave'; room: string; player: number }
   | { t: 'detach'; room: string; player: number }
@@ -72,6 +73,8 @@ export interface MemberTraffic {
   acks: number[];
   /** [member, 1 | 0] pairs, flat: the member's socket is (no longer) backed up. */
   pressure: number[];
+  /** [member, 1 | 0] pairs, flat: serve the member in predict mode (again: a resync) or on snapshots. */
+  netModes: number[];
 }
 
 /** What an `open` answers. */

@@ -2,6 +2,8 @@
 // one ByteBatcher flushed once per turn of the worker's loop (after the rooms that were due have ticked), with the
 // ticks they ran; every room's load is pushed every STATUS_INTERVAL_MS. Never touches a socket.
 import { getHeapStatistics } from 'node:v8';
+import { NetMode } from '../../shared/protocol/predict-messages.ts';
+import type { NetModeRequest } from '../net-mode-policy.ts';
 import type { Clock } from '../../shared/clock.ts';
 import { ErrorCode } from '../../shared/protocol/opcodes.ts';
 import { DeliveryKind, type MemberSink, type Seat } from '../hosted-room.ts';
@@ -114,7 +116,7 @@ export class WorkerRooms {
   private dispatch(msg: ToWorker): void {
     switch (msg.t) {
       case 'open':
-        void this.open(msg.req, msg.id, msg.scenario, msg.params, msg.seed);
+        void this.open(msg.req, msg.id, msg.scenario, msg.params, msg.seed, msg.netMode);
         return;
       case 'enter': {
         const room = this.rooms.get(msg.room);
@@ -146,7 +148,7 @@ export class WorkerRooms {
         return;
       }
       case 'traffic': {
-        const { inputs, acks, pressure } = msg.traffic;
+        const { inputs, acks, pressure, netModes } = msg.traffic;
         for (const input of inputs) {
           const m = this.members.get(input.member);
           if (m) for (let i = 0; i < input.commands.length; i++) m.seat.offerInput(input.firstTick + i, input.commands[i]);
@@ -156,6 +158,7 @@ export class WorkerRooms {
           const m = this.members.get(pressure[i]);
           if (m) m.sink.backed = pressure[i + 1] === 1;
         }
+        for (let i = 0; i < netModes.length; i += 2) this.members.get(netModes[i])?.seat.setNetMode(netModes[i + 1] === 1 ? NetMode.Predict : NetMode.Snapshot);
         return;
       }
       case 'metrics':
@@ -167,12 +170,12 @@ export class WorkerRooms {
     }
   }
 
-  private async open(req: number, id: string, scenario: string, params: Readonly<Record<string, number>>, seed: number | string): Promise<void> {
+  private async open(req: number, id: string, scenario: string, params: Readonly<Record<string, number>>, seed: number | string, netMode: NetModeRequest | undefined): Promise<void> {
     try {
       if (this.rooms.has(id)) throw new RoomError(ErrorCode.Internal, `room ${id} is already open in this worker`);
       const { config } = this.opts;
       const room = await openRoom(
-        { id, scenario, params, seed },
+        { id, scenario, params, seed, netMode },
         {
           factory: this.opts.factory,
           clock: this.opts.clock,

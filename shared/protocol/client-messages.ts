@@ -1,6 +1,7 @@
 // Messages a client sends to the server, as typed objects (the wire form of each is in codec.ts and
 // docs/protocol.md). The server only ever sees these after validation.ts has checked them.
 import type { InputCommand } from '../sim/input.ts';
+import type { NetModeMessage, ResyncMessage } from './predict-messages.ts';
 
 /**
  * First message on a connection: protocol version, display name, the room to join (null: the default room), and
@@ -46,4 +47,4 @@ export interface ClientByeMessage {
 }
 
 /** Every client→server message. */
-export type ClientMessage = HelloMessage | InputMessage | SnapshotAckMessage | PingMessage | ClientByeMessage;
+export type ClientMessage = HelloMessage | InputMessage | SnapshotAckMessage | PingMessage | ClientByeMessage | ResyncMessage | NetModeMessage;

@@ -91,6 +91,10 @@ export function encodeClientMessage(m: ClientMessage): Uint8Array {
       return packr.pack([ClientOpcode.Ping, m.clientTimeMs]);
     case 'bye':
       return packr.pack([ClientOpcode.Bye]);
+    case 'resync':
+      return packr.pack([ClientOpcode.Resync]);
+    case 'netMode':
+      return packr.pack([ClientOpcode.NetMode, m.mode]);
   }
 }
 
@@ -98,6 +102,14 @@ export function encodeClientMessage(m: ClientMessage): Uint8Array {
 function plainEvent(e: SimEvent): Record<string, unknown> {
   const out: Record<string, unknown> = {};
   for (const [k, v] of Object.entries(e)) if (v !== undefined) out[k] = v;
+  return out;
+}
+
+/** A 16-hex state hash as its 8 bytes. */
+export function hashBytes(hash: string): Uint8Array {
+  if (!/^[0-9a-f]{16}$/.test(hash)) throw new Error(`a state hash must be 16 lowercase hex characters, got ${hash}`);
+  const out = new Uint8Array(8);
+  for (let i = 0; i < 8; i++) out[i] = parseInt(hash.slice(2 * i, 2 * i + 2), 16);
   return out;
 }
 
@@ -129,6 +141,7 @@ export function encodeServerMessage(m: ServerMessage): Uint8Array {
           resumeToken: m.resumeToken,
           resumeGraceMs: m.resumeGraceMs,
           resumed: m.resumed,
+          netMode: m.netMode,
         },
       ]);
     case 'pong':
@@ -141,5 +154,14 @@ export function encodeServerMessage(m: ServerMessage): Uint8Array {
       return packr.pack([ServerOpcode.Error, m.code, m.message]);
     case 'bye':
       return packr.pack(m.url === undefined ? [ServerOpcode.Bye, m.reason, m.message] : [ServerOpcode.Bye, m.reason, m.message, m.url]);
+    case 'checkpoint':
+      return packr.pack([ServerOpcode.Checkpoint, m.tick, m.seed, m.bytes, m.inputs.map((p) => [p.playerId, p.input.moveX, p.input.moveZ, p.input.yaw, p.input.pitch, p.input.buttons, p.yawStep])]);
+    case 'record': {
+      // Joins and the hash only when present: most records are [23, tickLow, bits].
+      const fields: unknown[] = [ServerOpcode.Record, m.tickLow, m.bits];
+      if (m.joins.length > 0 || m.hash !== null) fields.push(m.joins.length > 0 ? m.joins.map((j) => [j.playerId, j.name]) : null);
+      if (m.hash !== null) fields.push(hashBytes(m.hash));
+      return packr.pack(fields);
+    }
   }
 }

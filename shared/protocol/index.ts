@@ -38,3 +38,5 @@ export {
 } from './snapshot-frame.ts';
 export { SharedFrameWork, SnapshotDecoder, SnapshotEncoder, TickHistory, type AckOutcome, type DecodedSnapshot, type EncodedSnapshot, type SnapshotEncoderStats } from './snapshot-stream.ts';
 export { checkPlayerName, checkRoomId, decodeClientMessage, type ClientDecodeResult } from './validation.ts';
+export { carriesHash, HASH_INTERVAL_TICKS, isNetMode, MAX_CHECKPOINT_BYTES, NetMode, type CheckpointMessage, type NetModeMessage, type RecordMessage, type ResyncMessage } from './predict-messages.ts';
+export { MAX_RECORD_MEMBERSHIP_CHANGES, RecordDeltaCoder, type PlayerInputState } from './record-delta.ts';

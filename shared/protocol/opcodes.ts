@@ -4,9 +4,10 @@
 /**
  * Bumped on any incompatible change to a message or the snapshot bit layout; hello and welcome must agree.
  * 2: hello's optional options map (seat and resume tokens); the welcome's resume fields; seat/resume codes.
- * 3: the bye reason `room-moved` (and error code) with the hosting server's URL as the bye's fourth element.
+ * 3: predict mode: the welcome's netMode, checkpoint and record messages, resync and netMode requests.
+ * 4: the bye reason `room-moved` (and error code) with the hosting server's URL as the bye's fourth element.
  */
-export const PROTOCOL_VERSION = 3;
+export const PROTOCOL_VERSION = 4;
 
 /** Opcodes of messages a client sends to the server (1–15). */
 export const ClientOpcode = {
@@ -15,6 +16,8 @@ export const ClientOpcode = {
   SnapshotAck: 3,
   Ping: 4,
   Bye: 5,
+  Resync: 6,
+  NetMode: 7,
 } as const;
 export type ClientOpcode = (typeof ClientOpcode)[keyof typeof ClientOpcode];
 
@@ -26,6 +29,8 @@ export const ServerOpcode = {
   Events: 19,
   Error: 20,
   Bye: 21,
+  Checkpoint: 22,
+  Record: 23,
 } as const;
 export type ServerOpcode = (typeof ServerOpcode)[keyof typeof ServerOpcode];
 

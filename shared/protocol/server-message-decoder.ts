@@ -4,7 +4,11 @@ import { describeValue } from '../sim/describe-value.ts';
 import type { SimEvent } from '../sim/types.ts';
 import { decodeFrame, MAX_SERVER_FRAME_DEPTH, toBytes } from './codec.ts';
 import { unpackDescriptors } from './descriptor-codec.ts';
-import { MAX_TOKEN_LENGTH, TOKEN_PATTERN } from './limits.ts';
+import { validateInputCommand } from '../sim/input.ts';
+import type { PlayerJoin } from '../sim/types.ts';
+import { MAX_NAME_LENGTH, MAX_TOKEN_LENGTH, TOKEN_PATTERN } from './limits.ts';
+import { isNetMode, MAX_CHECKPOINT_BYTES, type CheckpointMessage, type NetMode, type RecordMessage } from './predict-messages.ts';
+import { MAX_RECORD_MEMBERSHIP_CHANGES, type PlayerInputState } from './record-delta.ts';
 import { PROTOCOL_VERSION, ServerOpcode, type ByeReason, type ErrorCode } from './opcodes.ts';
 import type { ScenarioInfo, ServerMessage, WelcomeMessage } from './server-messages.ts';
 
@@ -88,7 +92,62 @@ function decodeWelcome(v: unknown): WelcomeMessage {
     resumeToken: v.resumeToken === null ? null : token(v.resumeToken, 'welcome.resumeToken'),
     resumeGraceMs: int(v.resumeGraceMs, 'welcome.resumeGraceMs'),
     resumed: bool(v.resumed, 'welcome.resumed'),
+    netMode: netMode(v.netMode, 'welcome.netMode'),
   };
+}
+
+function netMode(v: unknown, what: string): NetMode {
+  need(isNetMode(v), `${what} must be 'snapshot' or 'predict', got ${describeValue(v)}`);
+  return v;
+}
+
+function binary(v: unknown, what: string, maxBytes: number): Uint8Array {
+  need(v instanceof Uint8Array, `${what} must be binary`);
+  need(v.byteLength <= maxBytes, `${what} is larger than ${maxBytes} bytes`);
+  // A plain Uint8Array view (Node's msgpackr hands out Buffers).
+  return new Uint8Array(v.buffer, v.byteOffset, v.byteLength);
+}
+
+function decodeCheckpoint(value: unknown[]): CheckpointMessage {
+  need(value.length === 5, `checkpoint must have 4 fields, got ${value.length - 1}`);
+  const seed = value[2];
+  need(typeof seed === 'string' || (typeof seed === 'number' && Number.isInteger(seed) && seed >= 0 && seed <= 0xffffffff), 'checkpoint.seed must be a string or an integer in [0, 2^32)');
+  need(Array.isArray(value[4]) && value[4].length <= MAX_RECORD_MEMBERSHIP_CHANGES * 64, 'checkpoint.inputs must be an array');
+  const inputs: PlayerInputState[] = (value[4] as unknown[]).map((row, i) => {
+    const what = `checkpoint.inputs[${i}]`;
+    need(Array.isArray(row) && row.length === 7, `${what} must be [playerId, moveX, moveZ, yaw, pitch, buttons, yawStep]`);
+    const v = validateInputCommand({ moveX: row[1], moveZ: row[2], yaw: row[3], pitch: row[4], buttons: row[5] });
+    need(v.ok && !v.clamped, `${what} is not a valid command`);
+    const yawStep = int(row[6], `${what}.yawStep`, -32768);
+    need(yawStep <= 32767, `${what}.yawStep must be within ±32768`);
+    return { playerId: int(row[0], `${what}.playerId`), input: v.command, yawStep };
+  });
+  return { type: 'checkpoint', tick: int(value[1], 'checkpoint.tick'), seed, bytes: binary(value[3], 'checkpoint.bytes', MAX_CHECKPOINT_BYTES), inputs };
+}
+
+function decodeRecord(value: unknown[]): RecordMessage {
+  need(value.length >= 3 && value.length <= 5, `record must have 2 to 4 fields, got ${value.length - 1}`);
+  const tickLow = int(value[1], 'record.tickLow');
+  need(tickLow <= 255, 'record.tickLow must be below 256');
+  const joins: PlayerJoin[] = [];
+  if (value.length >= 4 && value[3] !== null) {
+    need(Array.isArray(value[3]) && value[3].length <= MAX_RECORD_MEMBERSHIP_CHANGES, 'record.joins must be an array of [playerId, name]');
+    for (const [i, j] of (value[3] as unknown[]).entries()) {
+      need(Array.isArray(j) && j.length === 2, `record.joins[${i}] must be [playerId, name]`);
+      const playerId = int(j[0], `record.joins[${i}].playerId`);
+      need(playerId <= 0xffffffff, `record.joins[${i}].playerId is out of range`);
+      const name = str(j[1], `record.joins[${i}].name`);
+      need(name.length <= MAX_NAME_LENGTH * 4, `record.joins[${i}].name is too long`);
+      joins.push({ playerId, name });
+    }
+  }
+  let hash: string | null = null;
+  if (value.length === 5) {
+    const b = binary(value[4], 'record.hash', 8);
+    need(b.byteLength === 8, 'record.hash must be 8 bytes');
+    hash = Array.from(b, (x) => x.toString(16).padStart(2, '0')).join('');
+  }
+  return { type: 'record', tickLow, bits: binary(value[2], 'record.bits', 1 << 20), joins, hash };
 }
 
 /** Reads one event of a known type from its wire object (fields checked in this order; `tick` already read). */
@@ -158,6 +217,10 @@ function decode(value: unknown): ServerMessage {
       need(value.length === 3 || value.length === 4, `bye must have 2 or 3 fields, got ${value.length - 1}`);
       if (value.length === 3) return { type: 'bye', reason: str(value[1], 'bye.reason') as ByeReason, message: str(value[2], 'bye.message') };
       return { type: 'bye', reason: str(value[1], 'bye.reason') as ByeReason, message: str(value[2], 'bye.message'), url: str(value[3], 'bye.url') };
+    case ServerOpcode.Checkpoint:
+      return decodeCheckpoint(value);
+    case ServerOpcode.Record:
+      return decodeRecord(value);
     default:
       throw new DecodeError(`unknown server opcode ${describeValue(op)}`);
   }

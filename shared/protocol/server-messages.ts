@@ -2,6 +2,7 @@
 // docs/protocol.md). The client decodes them with server-message-decoder.ts.
 import type { BodyDescriptor, SimEvent } from '../sim/types.ts';
 import type { ByeReason, ErrorCode } from './opcodes.ts';
+import type { CheckpointMessage, NetMode, RecordMessage } from './predict-messages.ts';
 import type { Bounds, SnapshotFormatSpec } from './quantization.ts';
 
 /** What a client needs to know about the room's scenario. */
@@ -37,6 +38,8 @@ export interface WelcomeMessage {
   resumeGraceMs: number;
   /** True when this welcome handed back a held player (same player id and character) instead of a new one. */
   resumed: boolean;
+  /** How the room serves its members; in predict mode a checkpoint follows the welcome and records every tick. */
+  netMode: NetMode;
 }
 
 /** Answer to ping. */
@@ -82,4 +85,4 @@ export interface ServerByeMessage {
 }
 
 /** Every server→client message. */
-export type ServerMessage = WelcomeMessage | PongMessage | SnapshotMessage | EventsMessage | ErrorMessage | ServerByeMessage;
+export type ServerMessage = WelcomeMessage | PongMessage | SnapshotMessage | EventsMessage | ErrorMessage | ServerByeMessage | CheckpointMessage | RecordMessage;

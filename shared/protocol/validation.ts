@@ -17,6 +17,7 @@ import {
   TOKEN_PATTERN,
 } from './limits.ts';
 import { ClientOpcode, ErrorCode, PROTOCOL_VERSION } from './opcodes.ts';
+import { isNetMode } from './predict-messages.ts';
 
 /** A checked client message, or why it was refused (an ErrorCode and a sentence naming the field). */
 export type ClientDecodeResult =
@@ -155,6 +156,17 @@ export function decodeClientMessage(data: unknown, maxBytes: number = MAX_CLIENT
       const wrong = arity(value, 1, 'bye');
       if (wrong) return wrong;
       return { ok: true, message: { type: 'bye' }, clampedCommands: 0 };
+    }
+    case ClientOpcode.Resync: {
+      const wrong = arity(value, 1, 'resync');
+      if (wrong) return wrong;
+      return { ok: true, message: { type: 'resync' }, clampedCommands: 0 };
+    }
+    case ClientOpcode.NetMode: {
+      const wrong = arity(value, 2, 'netMode');
+      if (wrong) return wrong;
+      if (!isNetMode(value[1])) return bad(`netMode.mode must be 'snapshot' or 'predict', got ${describeValue(value[1])}`);
+      return { ok: true, message: { type: 'netMode', mode: value[1] }, clampedCommands: 0 };
     }
     default:
       return bad(`unknown opcode ${describeValue(op)}`);

@@ -87,8 +87,9 @@ export function defineScenario<T extends ScenarioInput>(input: T): DefinedScenar
     params: Object.freeze(params),
     bounds: Object.freeze({ min: Object.freeze({ ...min }), max: Object.freeze({ ...max }) }),
     golden: Object.freeze({ ticks: golden.ticks, bots: golden.bots }),
-    [SCENARIO_BRAND]: Object.freeze({ sourceUrl: callerUrl() }),
   };
+  // Not enumerable: a spread copy ({ ...def }) is a plain definition again, not this module's scenario.
+  Object.defineProperty(def, SCENARIO_BRAND, { value: Object.freeze({ sourceUrl: callerUrl() }), enumerable: false });
   // Defaults must satisfy their own limits, and the player rules must resolve: the same checks Simulation makes.
   try {
     resolveParams(def);
@@ -96,7 +97,7 @@ export function defineScenario<T extends ScenarioInput>(input: T): DefinedScenar
   } catch (err) {
     fail(name, (err as Error).message);
   }
-  return Object.freeze(def);
+  return Object.freeze(def) as typeof def & DefinedScenario;
 }
 
 /** Whether `value` is a scenario made by defineScenario (by any copy of this package). */

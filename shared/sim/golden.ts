@@ -8,7 +8,7 @@ import { Simulation } from './simulation.ts';
 /** Seed of every golden run (the simulation's and the bots'). */
 export const GOLDEN_SEED = 20240601;
 /** Ticks between two golden bot joins. */
-const GOLDEN_JOIN_SPACING_TICKS = 15;
+export const GOLDEN_JOIN_SPACING_TICKS = 15;
 /** A golden run records its hash this often, so a changed run shows where it first departs. */
 export const GOLDEN_HASH_EVERY_TICKS = 60;
 

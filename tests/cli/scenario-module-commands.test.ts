@@ -47,6 +47,12 @@ describe('--scenario FILE', () => {
     }
   });
 
+  it('inspect shows the module hash the log was recorded with', async () => {
+    const r = await cli('inspect', logPath);
+    expect(r.code).toBe(0);
+    expect(r.stdout).toContain(`scenario module: ${await moduleSourceHash(game)}`);
+  });
+
   it('replay with the module reproduces every recorded hash', async () => {
     const r = await cli('replay', logPath, '--scenario', game, '--json');
     expect(r.code).toBe(0);

@@ -176,7 +176,7 @@ function hostileCommandField(w: MsgpackWriter, rng: Prng): void {
 }
 
 function edgeMessage(w: MsgpackWriter, rng: Prng, tick: number): void {
-  switch (rng.pick([ClientOpcode.Hello, ClientOpcode.Input, ClientOpcode.Input, ClientOpcode.Input, ClientOpcode.SnapshotAck, ClientOpcode.Ping, ClientOpcode.Bye])) {
+  switch (rng.pick([ClientOpcode.Hello, ClientOpcode.Input, ClientOpcode.Input, ClientOpcode.Input, ClientOpcode.SnapshotAck, ClientOpcode.Ping, ClientOpcode.Bye, ClientOpcode.Resync, ClientOpcode.NetMode])) {
     case ClientOpcode.Hello:
       w.arrayHeader(4).int(ClientOpcode.Hello, 'fix');
       if (rng.next() < 0.7) w.int(PROTOCOL_VERSION, 'fix');
@@ -210,6 +210,21 @@ function edgeMessage(w: MsgpackWriter, rng: Prng, tick: number): void {
       w.arrayHeader(2).int(ClientOpcode.Ping, 'fix');
       writeNumber(w, rng, rng.next() < 0.5 ? rng.range(-1e6, 1e6) : rng.pick(EDGE_NUMBERS));
       return;
+    case ClientOpcode.Resync: {
+      const arity = rng.next() < 0.8 ? 1 : 2;
+      w.arrayHeader(arity).int(ClientOpcode.Resync, 'fix');
+      if (arity === 2) writeHostile(w, rng, 1);
+      return;
+    }
+    case ClientOpcode.NetMode: {
+      const arity = rng.next() < 0.8 ? 2 : rng.int(1, 3);
+      w.arrayHeader(arity).int(ClientOpcode.NetMode, 'fix');
+      for (let i = 1; i < arity; i++) {
+        if (rng.next() < 0.6) w.str(rng.pick(['predict', 'snapshot', 'Predict', '']));
+        else writeHostile(w, rng, 1);
+      }
+      return;
+    }
     default:
       w.arrayHeader(rng.next() < 0.8 ? 1 : 2).int(ClientOpcode.Bye, 'fix');
   }
@@ -284,7 +299,7 @@ export function hostileFrame(rng: Prng, tick = 0, kind: FrameKind = pickKind(rng
       const arity = rng.int(0, 6);
       w.arrayHeader(arity);
       if (arity > 0) {
-        if (rng.next() < 0.8) w.int(rng.int(ClientOpcode.Hello, ClientOpcode.Bye), 'fix');
+        if (rng.next() < 0.8) w.int(rng.int(ClientOpcode.Hello, ClientOpcode.NetMode), 'fix');
         else writeHostile(w, rng, 1);
       }
       for (let i = 1; i < arity; i++) writeHostile(w, rng);
@@ -294,11 +309,11 @@ export function hostileFrame(rng: Prng, tick = 0, kind: FrameKind = pickKind(rng
       edgeMessage(w, rng, tick);
       break;
     case 'deep-nesting':
-      w.arrayHeader(2).int(rng.int(ClientOpcode.Hello, ClientOpcode.Bye), 'fix');
+      w.arrayHeader(2).int(rng.int(ClientOpcode.Hello, ClientOpcode.NetMode), 'fix');
       writeDeep(w, rng, rng.int(5, 900));
       break;
     case 'extension':
-      w.arrayHeader(rng.int(1, 3)).int(rng.int(ClientOpcode.Hello, ClientOpcode.Bye), 'fix');
+      w.arrayHeader(rng.int(1, 3)).int(rng.int(ClientOpcode.Hello, ClientOpcode.NetMode), 'fix');
       writeExtension(w, rng);
       break;
     case 'mutated':

@@ -28,12 +28,12 @@ describe('parseImports', () => {
       "const f = await import('./f.ts');",
     ].join('\n');
     expect(parseImports(text)).toEqual([
-      { specifier: './a.ts', line: 1, typeOnly: false },
-      { specifier: '../b.ts', line: 4, typeOnly: false },
-      { specifier: './c.ts', line: 5, typeOnly: false },
-      { specifier: './d.ts', line: 6, typeOnly: true },
-      { specifier: './side.ts', line: 7, typeOnly: false },
-      { specifier: './f.ts', line: 9, typeOnly: false },
+      { specifier: './a.ts', line: 1, typeOnly: false, dynamic: false },
+      { specifier: '../b.ts', line: 4, typeOnly: false, dynamic: false },
+      { specifier: './c.ts', line: 5, typeOnly: false, dynamic: false },
+      { specifier: './d.ts', line: 6, typeOnly: true, dynamic: false },
+      { specifier: './side.ts', line: 7, typeOnly: false, dynamic: false },
+      { specifier: './f.ts', line: 9, typeOnly: false, dynamic: true },
     ]);
   });
 });
@@ -49,10 +49,10 @@ describe('checkImports', () => {
         file('tests/e.ts', "import { main } from '../cli/main.ts';", "import { Room } from '../server/room.ts';"),
       ]),
     ).toEqual([
-      'server/a.ts:2: server/ may not import sdk/ (sdk/index.ts); server/ may import: server, scenarios, shared/physics, shared/sim, shared/protocol, shared, shared/physics-data',
+      'server/a.ts:2: server/ may not import sdk/ (sdk/index.ts); server/ may import: server, server/log, scenarios, shared/physics, shared/sim, shared/protocol, shared, shared/physics-data',
       'sdk/b.ts:2: sdk/ may not import server/ (server/room.ts); sdk/ may import: sdk, shared/protocol, shared/sim, shared, shared/physics-data',
       'shared/sim/c.ts:2: shared/sim/ may not import shared/protocol/ (shared/protocol/codec.ts); shared/sim/ may import: shared/sim, shared/physics, shared, shared/physics-data',
-      'client/d.ts:2: client/ may not import cli/ (cli/main.ts); client/ may import: client, sdk, shared/protocol, shared/sim, shared, shared/physics-data',
+      'client/d.ts:2: client/ may not import cli/ (cli/main.ts); client/ may import: client, client/physics, sdk, shared/protocol, shared/sim, shared, shared/physics-data',
     ]);
   });
 
@@ -87,6 +87,27 @@ describe('checkImports', () => {
     ).toEqual(['client/a.ts:2: client/ must not pull in the physics engine: client/a.ts → shared/sim/helper.ts → shared/sim/simulation.ts → shared/physics/index.ts']);
   });
 
+  it('lets browser code reach the physics chunk only by a dynamic import (tests as they like), and follows no such import looking for the engine', () => {
+    const sim = file('shared/sim/simulation.ts', "import { PhysicsWorld } from '../physics/index.ts';");
+    const chunk = file('client/physics/index.ts', "import { Simulation } from '../../shared/sim/simulation.ts';", "import { readLogBytes } from '../../server/log/log-bytes.ts';");
+    expect(
+      problems([
+        sim,
+        chunk,
+        file('client/app/lazy.ts', "const physics = await import('../physics/index.ts');"),
+        file('client/app/page.ts', "import { load } from './lazy.ts';", "import type { Simulation } from '../physics/index.ts';"),
+        file('client/app/eager.ts', "import { Simulation } from '../physics/index.ts';"),
+        file('sdk/d.ts', "const physics = await import('../client/physics/index.ts');"),
+        file('client/e.ts', "import { readLogBytes } from '../server/log/log-bytes.ts';"),
+        file('tests/client/f.test.ts', "import { ReplayPlayer } from '../../client/physics/index.ts';"),
+      ]),
+    ).toEqual([
+      'client/app/eager.ts:2: load client/physics/index.ts with a dynamic import(): client/physics/ carries the physics engine, and a static import ships it with every page',
+      'sdk/d.ts:2: sdk/ may not import client/physics/ (client/physics/index.ts); sdk/ may import: sdk, shared/protocol, shared/sim, shared, shared/physics-data',
+      'client/e.ts:2: client/ may not import server/log/ (server/log/log-bytes.ts); client/ may import: client, client/physics, sdk, shared/protocol, shared/sim, shared, shared/physics-data',
+    ]);
+  });
+
   it('keeps Node and server packages out of browser areas and jolt-physics inside shared/physics', () => {
     expect(
       problems([
@@ -117,7 +138,7 @@ describe('checkImports', () => {
         }
       }
     };
-    for (const top of ['shared', 'sdk', 'server', 'cli', 'client', 'scenarios', 'bench', 'tests', 'scripts', 'bin']) walk(join(root, top));
+    for (const top of ['shared', 'sdk', 'server', 'cli', 'client', 'scenarios', 'bench', 'tests', 'scripts', 'bin', 'api']) walk(join(root, top));
     expect(files.length).toBeGreaterThan(300);
     expect(problems(files)).toEqual([]);
   });

@@ -42,6 +42,29 @@ describe('createServer', () => {
     expect(report.hashesChecked).toBeGreaterThan(0);
   });
 
+  it('runs a definition in a room worker, which loads the module that defined it, and records its hash', async () => {
+    const recordDir = join(dir, 'rec-worker');
+    const def = await loadScenarioModule(game);
+    const server = await createServer({ port: 0, scenarios: [def], roomWorkers: 1, recordDir, logger: silentLogger() });
+    try {
+      const a = await WsTestClient.join(server.wsUrl, 'ann');
+      expect(a.welcome!.scenario.name).toBe('crate-drop');
+      await a.waitFor(() => a.frames.length > 5, 10_000, 'snapshots');
+      a.close();
+    } finally {
+      await server.close();
+    }
+    const [file] = await readdir(recordDir);
+    const report = await replayLog(join(recordDir, file), { scenario: def });
+    expect(report.header.scenarioHash).toBe(await moduleSourceHash(game));
+    expect(report.status).toBe('ok');
+  });
+
+  it('refuses a definition whose module is unknown when rooms run in workers', async () => {
+    const bare = { ...(await loadScenarioModule(game)) }; // a copy: no longer the module's defineScenario result
+    await expect(createServer({ port: 0, scenarios: [{ ...bare, name: 'plain' }], roomWorkers: 1, logger: silentLogger() })).rejects.toThrow(/the module of scenario "plain" is unknown/);
+  });
+
   it('takes loaded definitions, offers only the given scenarios, and refuses an empty list or duplicate names', async () => {
     const def = await loadScenarioModule(game);
     const server = await createServer({ port: 0, scenarios: [def], logger: silentLogger() });

@@ -6,6 +6,8 @@ import type { SessionLimits } from '../../server/client-session.ts';
 import { GameServer } from '../../server/game-server.ts';
 import { silentLogger, type Logger } from '../../server/logger.ts';
 import { memoryPeerConnection } from '../../server/memory-peer.ts';
+import type { NetModeRequest } from '../../server/net-mode-policy.ts';
+import type { DurabilityOptions } from '../../server/recorder.ts';
 import { MemoryNetwork, type MemoryNetworkOptions, type MemoryTransport } from '../../sdk/index.ts';
 import { createMetrics } from '../../server/metrics.ts';
 import { createRoomFactory, type ScenarioSource } from '../../server/room-factory.ts';
@@ -44,6 +46,8 @@ export interface HarnessOptions {
   params?: Record<string, number>;
   snapshotRateHz?: number;
   recordDir?: string | null;
+  /** When recorded ticks reach the disk (default: the server's, a sync per tick before its messages leave). */
+  durability?: DurabilityOptions;
   latencyMs?: number;
   limits?: Partial<SessionLimits>;
   maxClientsPerRoom?: number;
@@ -56,6 +60,8 @@ export interface HarnessOptions {
   requireSeat?: boolean;
   /** The server's logger (default: silent). */
   logger?: Logger;
+  /** Net mode of the rooms (default: the server's, 'auto'). */
+  netMode?: NetModeRequest;
 }
 
 /** A protocol-level client: records every decoded message; decodes and acks snapshots. */
@@ -156,7 +162,7 @@ export async function startHarness(opts: HarnessOptions): Promise<Harness> {
   const clock = new ManualClock();
   const logger = opts.logger ?? silentLogger();
   const server = await GameServer.create({
-    factory: createRoomFactory({ scenarios: scenarioList(opts.scenarios), logger, recordDir: opts.recordDir ?? null }),
+    factory: createRoomFactory({ scenarios: scenarioList(opts.scenarios), logger, recordDir: opts.recordDir ?? null, durability: opts.durability }),
     defaultScenario: opts.defaultScenario ?? opts.scenarios[0].name,
     defaultParams: opts.params,
     clock,
@@ -170,6 +176,7 @@ export async function startHarness(opts: HarnessOptions): Promise<Harness> {
     resumeGraceMs: opts.resumeGraceMs,
     seats: opts.seats,
     requireSeat: opts.requireSeat,
+    netMode: opts.netMode,
   });
   const histories = new Map<string, { records: TickInputRecord[]; hashes: string[] }>();
   const watch = (room: Room): void => {

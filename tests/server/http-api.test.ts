@@ -77,4 +77,20 @@ describe('http-api', () => {
     expect(await refusal(api.deleteRoom('default'))).toMatchObject({ status: 409, code: 'default-room' });
     expect(h!.server.rooms.get('default')).toBeDefined();
   });
+
+  it('opens a room in the net mode asked for, lists it, and refuses the other mode for an open room with 409', async () => {
+    const api = await start();
+    const made = await api.createRoom({ scenario: 'test-strip', roomId: 'fast', netMode: 'predict' });
+    expect(made).toMatchObject({ created: true, room: { id: 'fast', netMode: 'predict' } });
+    expect((await api.listRooms()).find((r) => r.id === 'fast')).toMatchObject({ netMode: 'predict' });
+    expect(await api.createRoom({ scenario: 'test-strip', roomId: 'fast', netMode: 'predict' })).toMatchObject({ created: false });
+    expect(await refusal(api.createRoom({ scenario: 'test-strip', roomId: 'fast', netMode: 'snapshot' }))).toEqual({
+      status: 409,
+      code: 'room-exists',
+      message: 'room "fast" is open in predict mode, not snapshot',
+    });
+    // No cost estimate for a test scenario: 'auto' stays on snapshots and the room list says why.
+    const auto = await api.createRoom({ scenario: 'test-strip', roomId: 'plain' });
+    expect(auto.room).toMatchObject({ netMode: 'snapshot', netModeNote: 'no cost estimate for scenario test-strip: snapshot mode' });
+  });
 });

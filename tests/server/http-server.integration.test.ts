@@ -15,7 +15,7 @@ afterEach(async () => {
   server = null;
 });
 
-const room: RoomInfo = { id: 'default', scenario: 's', clients: 1, tick: 42, bodies: 7, params: {} };
+const room: RoomInfo = { id: 'default', scenario: 's', clients: 1, tick: 42, bodies: 7, params: {}, netMode: 'snapshot' };
 
 async function serve(over: Partial<HttpApi> = {}, onError?: (error: unknown) => void): Promise<string> {
   const api: HttpApi = {
@@ -93,7 +93,7 @@ describe('http-server', () => {
     const base = await serve();
     const r = await fetch(`${base}/api/rooms`, { method: 'POST', body: JSON.stringify({ scenario: 's', id: 'mine' }) });
     expect(r.status).toBe(400);
-    expect(await r.json()).toEqual({ error: 'unknown-field', message: 'unknown field "id": POST /api/rooms takes scenario, params, roomId' });
+    expect(await r.json()).toEqual({ error: 'unknown-field', message: 'unknown field "id": POST /api/rooms takes scenario, params, roomId, netMode' });
   });
 
   it('answers malformed percent-encoding in a room id with 400, not 500', async () => {

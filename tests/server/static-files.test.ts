@@ -1,4 +1,5 @@
-// Tests for server/static-files.ts: serving the built client, content types, traversal refusal, not-built page.
+// Tests for server/static-files.ts: serving the built client, content types, extensionless pages, caching of
+// content-hashed chunks, traversal refusal, not-built page.
 import { mkdtempSync, mkdirSync, rmSync, writeFileSync } from 'node:fs';
 import type { IncomingMessage, ServerResponse } from 'node:http';
 import { tmpdir } from 'node:os';
@@ -40,6 +41,9 @@ mkdirSync(join(dir, 'assets'));
 writeFileSync(join(dir, 'index.html'), '<!doctype html><title>t</title>');
 writeFileSync(join(dir, 'assets', 'app.js'), 'console.log(1)');
 writeFileSync(join(dir, 'assets', 'jolt.wasm'), Buffer.from([0, 97, 115, 109]));
+writeFileSync(join(dir, 'replay.html'), '<!doctype html><title>replay</title>');
+mkdirSync(join(dir, 'chunks'));
+writeFileSync(join(dir, 'chunks', 'jolt-physics-0123456789abcdef.wasm'), Buffer.from([0, 97, 115, 109, 1, 0, 0, 0]));
 writeFileSync(join(dir, '..', 'taos-secret.txt'), 'secret');
 afterAll(() => {
   rmSync(dir, { recursive: true, force: true });
@@ -58,6 +62,20 @@ describe('static-files', () => {
     expect(js?.body).toBe('console.log(1)');
     const wasm = await request(handler, 'GET', '/assets/jolt.wasm');
     expect(wasm?.headers['content-type']).toBe('application/wasm');
+  });
+
+  it('serves name.html at /name, and content-hashed chunks as cacheable for good while pages revalidate', async () => {
+    const handler = createStaticHandler(dir);
+    const page = await request(handler, 'GET', '/replay');
+    expect(page?.status).toBe(200);
+    expect(page?.body).toContain('<title>replay</title>');
+    expect(page?.headers['cache-control']).toBe('no-cache');
+    const wasm = await request(handler, 'GET', '/chunks/jolt-physics-0123456789abcdef.wasm');
+    expect(wasm?.status).toBe(200);
+    expect(wasm?.headers['content-type']).toBe('application/wasm');
+    expect(wasm?.headers['cache-control']).toBe('public, max-age=31536000, immutable');
+    expect((await request(handler, 'GET', '/assets/jolt.wasm'))?.headers['cache-control']).toBe('no-cache');
+    expect((await request(handler, 'GET', '/nope'))?.status).toBe(404);
   });
 
   it('answers HEAD without a body', async () => {

@@ -1,18 +1,19 @@
-// Node side of the cross-runtime determinism check: bundles page.ts for the browser (esbuild, as the client build
-// does), serves it with the Jolt .wasm and a job on 127.0.0.1, and hands back what a browser POSTs to /result.
+// Node side of the cross-runtime determinism check: builds the production client (scripts/build-client.ts) into a
+// temporary directory, bundles page.ts beside it, serves both with a job naming the built physics chunk on
+// 127.0.0.1, and hands back what a browser POSTs to /result.
 import { build } from 'esbuild';
-import { copyFile, mkdtemp, rm, writeFile } from 'node:fs/promises';
+import { mkdtemp, readFile, rm, writeFile } from 'node:fs/promises';
 import { createServer, type IncomingMessage } from 'node:http';
 import type { AddressInfo } from 'node:net';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { joltWasmPath } from '../../../server/physics-node.ts';
+import { buildClient } from '../../../scripts/build-client.ts';
+import { GOLDEN_HASH_EVERY_TICKS, GOLDEN_JOIN_SPACING_TICKS, GOLDEN_SEED } from '../../../shared/sim/golden.ts';
 import { createStaticHandler } from '../../../server/static-files.ts';
 import type { ResumeJob, SimCheckJob, SimCheckResult } from './protocol.ts';
 
 const PAGE_ENTRY = fileURLToPath(new URL('./page.ts', import.meta.url));
-const WASM_FILE = 'jolt-physics.wasm';
 /** The largest result body accepted (hashes of every scenario: a few tens of KiB). */
 const MAX_RESULT_BYTES = 4 << 20;
 
@@ -38,20 +39,22 @@ async function readBody(req: IncomingMessage): Promise<string> {
 export async function startSimCheckHost(resumes: ResumeJob[]): Promise<SimCheckHost> {
   const dir = await mkdtemp(join(tmpdir(), 'taos-sim-check-'));
   try {
+    const built = await buildClient({ outDir: dir });
+    const physicsChunk = built.split.physicsChunk;
+    if (!physicsChunk) throw new Error('the client build has no physics chunk');
     await build({
       entryPoints: [PAGE_ENTRY],
-      outfile: join(dir, 'page.js'),
+      outfile: join(dir, 'sim-check.js'),
       bundle: true,
       format: 'esm',
       platform: 'browser',
       target: ['es2022'],
-      // Jolt's glue imports node:module only on its Node path.
-      external: ['node:module'],
       logLevel: 'silent',
     });
-    await copyFile(joltWasmPath(), join(dir, WASM_FILE));
-    await writeFile(join(dir, 'index.html'), '<!doctype html><meta charset="utf-8"><title>sim-check</title><link rel="icon" href="data:,"><script type="module" src="page.js"></script>\n');
-    const job: SimCheckJob = { wasmFile: WASM_FILE, resumes };
+    // The page must use the shipped chunk's Simulation, not a copy of its own.
+    if (/JoltInterface/.test(await readFile(join(dir, 'sim-check.js'), 'utf8'))) throw new Error('sim-check.js bundles Jolt itself; it must load the physics chunk');
+    await writeFile(join(dir, 'sim-check.html'), '<!doctype html><meta charset="utf-8"><title>sim-check</title><link rel="icon" href="data:,"><script type="module" src="sim-check.js"></script>\n');
+    const job: SimCheckJob = { physicsChunk, golden: { seed: GOLDEN_SEED, joinSpacingTicks: GOLDEN_JOIN_SPACING_TICKS, hashEveryTicks: GOLDEN_HASH_EVERY_TICKS }, resumes };
     await writeFile(join(dir, 'job.json'), JSON.stringify(job));
   } catch (err) {
     await rm(dir, { recursive: true, force: true });
@@ -82,7 +85,7 @@ export async function startSimCheckHost(resumes: ResumeJob[]): Promise<SimCheckH
   await new Promise<void>((resolve) => server.listen(0, '127.0.0.1', resolve));
   const { port } = server.address() as AddressInfo;
   return {
-    url: `http://127.0.0.1:${port}/`,
+    url: `http://127.0.0.1:${port}/sim-check.html`,
     nextResult(timeoutMs) {
       const ready = arrived.shift();
       if (ready) return Promise.resolve(ready);

@@ -16,8 +16,10 @@ export interface ResumeJob {
 
 /** The job the page fetches from job.json. */
 export interface SimCheckJob {
-  /** The Jolt .wasm, relative to the page. */
-  wasmFile: string;
+  /** The production build's physics chunk (client/physics/index.ts as built), relative to the page. */
+  physicsChunk: string;
+  /** The constants of a golden run (shared/sim/golden.ts; the page does not bundle that module, which loads Jolt). */
+  golden: { seed: number; joinSpacingTicks: number; hashEveryTicks: number };
   resumes: ResumeJob[];
 }
 

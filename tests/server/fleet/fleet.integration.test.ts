@@ -3,7 +3,7 @@
 // forgets a killed server within the TTL, and keeps serving its own rooms while Redis is down.
 import { afterAll, beforeAll, expect, it } from 'vitest';
 import { connect } from '../../../sdk/client.ts';
-import { ByeReason, ErrorCode } from '../../../shared/protocol/index.ts';
+import { ByeReason, ErrorCode, PROTOCOL_VERSION } from '../../../shared/protocol/index.ts';
 import { describeRedis, startRedisServer, type RedisServer } from '../../helpers/redis-server.ts';
 import { startServeProcess, type ServeProcess } from '../../helpers/serve-process.ts';
 import { WsTestClient } from '../ws-client.ts';
@@ -83,7 +83,7 @@ describeRedis('a fleet of serve processes on Redis', () => {
     expect(created.status).toBe(201);
     const raw = await WsTestClient.connect(b.wsUrl);
     try {
-      raw.send({ type: 'hello', version: 3, name: 'Bo', room: 'moved-check' });
+      raw.send({ type: 'hello', version: PROTOCOL_VERSION, name: 'Bo', room: 'moved-check' });
       await raw.waitFor(() => raw.closed !== null, 5000, 'the close');
       expect(raw.ofType('error')).toEqual([{ type: 'error', code: ErrorCode.RoomMoved, message: expect.stringContaining(a.url) }]);
       expect(raw.ofType('bye')).toEqual([{ type: 'bye', reason: ByeReason.RoomMoved, message: expect.stringContaining('moved-check'), url: a.wsUrl }]);

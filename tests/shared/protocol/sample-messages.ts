@@ -18,4 +18,5 @@ export const sampleWelcome: WelcomeMessage = {
   resumeToken: 'Zm9yLXRlc3RzLW9ubHktMzItYnl0ZXMtb2YtcmFuZG9t',
   resumeGraceMs: 30_000,
   resumed: false,
+  netMode: 'snapshot',
 };

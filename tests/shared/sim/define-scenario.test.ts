@@ -21,6 +21,7 @@ describe('defineScenario', () => {
     expect(isDefinedScenario(def)).toBe(true);
     expect(isDefinedScenario(getScenario('shape-rain'))).toBe(false);
     expect(isDefinedScenario({ ...base })).toBe(false);
+    expect(isDefinedScenario({ ...def })).toBe(false);
   });
 
   it('records the module that called it', () => {

@@ -1,5 +1,5 @@
-// The browser bundle of the Simulation reproduces Node bit for bit, in headless Chromium and Firefox ESR: every
-// scenario's golden run ends on its committed hash, and a checkpoint made in Node restores in the browser and
+// The Simulation as the client build ships it (the physics chunk pages import()) reproduces Node bit for bit, in
+// headless Chromium and Firefox ESR: every scenario's golden run ends on its committed hash, and a checkpoint made in Node restores in the browser and
 // continues (through a join, a leave and a fast rollback) with the same hash on every tick as in Node.
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';

@@ -1,0 +1,217 @@
+// The rollback core of a predicting client: a local Simulation started from the server's checkpoint runs ahead to the
+// present with the player's own commands and everyone else's last confirmed command; each confirmed record is
+// checked against what was predicted for its tick, and a difference rolls back to that tick and re-simulates to the
+// present. Confirmed ticks yield the authoritative events; every hash the server sends is compared. No timers, no
+// sockets: predict-session.ts drives it.
+import type { PlayerInputState } from '../../shared/protocol/record-delta.ts';
+import { RecordDeltaCoder } from '../../shared/protocol/record-delta.ts';
+import { carriesHash, type RecordMessage } from '../../shared/protocol/predict-messages.ts';
+import { sameInput, type InputCommand } from '../../shared/sim/input.ts';
+import type { Checkpoint } from '../../shared/sim/checkpoint.ts';
+import { RollbackWindow } from '../../shared/sim/rollback-window.ts';
+import type { BodyDescriptor, CharacterState, PlayerCommand, SimEvent, TickInputRecord } from '../../shared/sim/types.ts';
+
+/** The part of Simulation a predicting client drives (shared/sim/simulation.ts satisfies it). */
+export interface PredictSimulation {
+  readonly tick: number;
+  step(record: TickInputRecord): SimEvent[];
+  stateHash(): string;
+  saveCheckpoint(): Checkpoint;
+  restoreCheckpoint(cp: Checkpoint): void;
+  restoreCheckpointBytes(bytes: Uint8Array): void;
+  playerIds(): number[];
+  characters(): CharacterState[];
+  readBodyStates(): { count: number; ids: Uint32Array; states: Float32Array; flags: Uint8Array };
+  bodyDescriptor(id: number): BodyDescriptor | undefined;
+  descriptors(): BodyDescriptor[];
+  destroy(): void;
+}
+
+/** What one predicted tick used and produced, until the tick is confirmed. */
+interface Slot {
+  record: TickInputRecord;
+  events: SimEvent[];
+  hash: string | null;
+}
+
+/** What advance() did this time. */
+export interface AdvanceReport {
+  /** Ticks re-simulated after a misprediction (0: none). */
+  rollbackTicks: number;
+  /** Ticks stepped in all (confirmed catch-up, re-simulation and new predictions). */
+  steppedTicks: number;
+  /** Whether a rollback happened (the predicted world was corrected). */
+  corrected: boolean;
+}
+
+/** Callbacks of a Predictor. */
+export interface PredictorHandlers {
+  /** Events of ticks just confirmed, in tick order (authoritative: the server's simulation produced the same). */
+  confirmedEvents(events: SimEvent[]): void;
+  /** The server's hash of a confirmed tick differs from ours. */
+  desync(tick: number, ours: string, theirs: string): void;
+}
+
+function sameRecord(predicted: TickInputRecord, confirmed: TickInputRecord): boolean {
+  if (confirmed.leaves.length > 0 || confirmed.joins.length > 0 || predicted.commands.length !== confirmed.commands.length) return false;
+  for (let i = 0; i < confirmed.commands.length; i++) {
+    const a = predicted.commands[i];
+    const b = confirmed.commands[i];
+    if (a.playerId !== b.playerId || !sameInput(a.input, b.input)) return false;
+  }
+  return true;
+}
+
+/** Rollback prediction over one simulation, from one checkpoint (a resync builds a new Predictor). */
+export class Predictor {
+  readonly sim: PredictSimulation;
+  readonly playerId: number;
+  /** Most ticks the prediction runs ahead of the newest confirmed tick. */
+  readonly maxAheadTicks: number;
+  private readonly window: RollbackWindow;
+  private readonly coder: RecordDeltaCoder;
+  private readonly handlers: PredictorHandlers;
+  private readonly slots = new Map<number, Slot>();
+  private readonly queue: Array<{ record: TickInputRecord; hash: string | null }> = [];
+  /** The next tick a record will arrive for. */
+  private nextRecordTick: number;
+  /** The oldest tick not yet confirmed (every tick before it matches the server). */
+  private confirmed: number;
+  /** Confirmed records from the window's oldest checkpoint on (a rollback re-steps them up to the mismatch). */
+  private readonly confirmedRecords = new Map<number, TickInputRecord>();
+  private lastOwn: InputCommand | null = null;
+  private verified = 0;
+  /** The own command each unconfirmed tick was predicted with (re-simulation reuses it). */
+  private readonly ownHistory = new Map<number, InputCommand>();
+
+  /**
+   * `checkpointEveryTicks`: save a fast checkpoint every this many ticks (1: every tick). In big scenes saving costs
+   * more than stepping; a rollback then re-steps up to this many − 1 confirmed ticks from the checkpoint before it.
+   */
+  constructor(sim: PredictSimulation, checkpoint: { tick: number; inputs: PlayerInputState[] }, playerId: number, handlers: PredictorHandlers, maxAheadTicks = 30, checkpointEveryTicks = 1) {
+    this.sim = sim;
+    this.playerId = playerId;
+    this.handlers = handlers;
+    this.maxAheadTicks = maxAheadTicks;
+    this.window = new RollbackWindow(sim, maxAheadTicks + checkpointEveryTicks + 2, checkpointEveryTicks);
+    this.coder = new RecordDeltaCoder(checkpoint.inputs);
+    this.nextRecordTick = checkpoint.tick;
+    this.confirmed = checkpoint.tick;
+    if (sim.tick !== checkpoint.tick) throw new Error(`Predictor: the simulation is at tick ${sim.tick}, the checkpoint at ${checkpoint.tick}`);
+  }
+
+  /** The oldest unconfirmed tick: ticks before it are the server's. */
+  get confirmedTick(): number {
+    return this.confirmed;
+  }
+
+  /** The tick the local simulation will step next (ticks simulated so far). */
+  get presentTick(): number {
+    return this.sim.tick;
+  }
+
+  /** Server hashes that matched the local simulation's. */
+  get hashesVerified(): number {
+    return this.verified;
+  }
+
+  /** Confirmed records received but not yet applied. */
+  get queuedRecords(): number {
+    return this.queue.length;
+  }
+
+  /** Decodes the next confirmed record (throws a clear Error for a record that does not fit the stream). */
+  receive(msg: RecordMessage): void {
+    const tick = this.nextRecordTick;
+    if ((tick & 0xff) !== msg.tickLow) throw new Error(`record for tick …${msg.tickLow} (mod 256) arrived, tick ${tick} was expected`);
+    const record = this.coder.decode(tick, msg.bits, msg.joins);
+    this.nextRecordTick = tick + 1;
+    this.queue.push({ record, hash: msg.hash });
+  }
+
+  /**
+   * Applies the queued confirmed records (rolling back on a misprediction) and predicts up to `targetTick`
+   * (exclusive: the simulation ends at tick targetTick), with `ownCommand(tick)` for the player's own ticks.
+   */
+  advance(targetTick: number, ownCommand: (tick: number) => InputCommand | undefined): AdvanceReport {
+    const present = this.sim.tick;
+    let rollbackFrom: number | null = null;
+    let restoredFrom = present;
+    let stepped = 0;
+    for (const { record, hash } of this.queue.splice(0)) {
+      const tick = record.tick;
+      if (rollbackFrom === null && tick < this.sim.tick) {
+        const slot = this.slots.get(tick)!;
+        if (sameRecord(slot.record, record)) {
+          this.confirm(tick, slot, hash);
+          continue;
+        }
+        rollbackFrom = tick;
+        const from = this.window.latestAtOrBefore(tick)!;
+        restoredFrom = from;
+        this.window.restore(from);
+        for (const t of [...this.slots.keys()]) if (t >= tick) this.slots.delete(t);
+        for (let t = from; t < tick; t++) {
+          this.window.step(this.confirmedRecords.get(t)!);
+          stepped++;
+        }
+      }
+      this.stepSlot(record);
+      stepped++;
+      this.confirm(tick, this.slots.get(tick)!, hash);
+    }
+    const end = Math.min(Math.max(targetTick, present), this.confirmed + this.maxAheadTicks);
+    while (this.sim.tick < end) {
+      this.stepSlot(this.predictedRecord(this.sim.tick, ownCommand));
+      stepped++;
+    }
+    const oldest = this.window.latestAtOrBefore(this.confirmed);
+    if (oldest !== null) {
+      this.window.forgetBefore(oldest);
+      for (const t of this.confirmedRecords.keys()) if (t < oldest) this.confirmedRecords.delete(t);
+    }
+    for (const t of this.ownHistory.keys()) if (t < this.confirmed) this.ownHistory.delete(t);
+    const rollbackTicks = rollbackFrom === null ? 0 : Math.max(0, Math.min(present, this.sim.tick) - restoredFrom);
+    return { rollbackTicks, steppedTicks: stepped, corrected: rollbackFrom !== null && rollbackFrom < present };
+  }
+
+  /** Frees the rollback checkpoints (the simulation belongs to the caller). */
+  dispose(): void {
+    this.window.dispose();
+    this.slots.clear();
+    this.confirmedRecords.clear();
+    this.ownHistory.clear();
+    this.queue.length = 0;
+  }
+
+  private predictedRecord(tick: number, ownCommand: (tick: number) => InputCommand | undefined): TickInputRecord {
+    const commands: PlayerCommand[] = [];
+    for (const id of this.sim.playerIds()) {
+      let input: InputCommand | undefined;
+      if (id === this.playerId) {
+        input = this.ownHistory.get(tick) ?? ownCommand(tick) ?? this.lastOwn ?? this.coder.inputOf(id);
+        if (input) {
+          this.lastOwn = input;
+          this.ownHistory.set(tick, input);
+        }
+      } else input = this.coder.inputOf(id);
+      if (input) commands.push({ playerId: id, input: { ...input } });
+    }
+    return { tick, leaves: [], joins: [], commands };
+  }
+
+  private stepSlot(record: TickInputRecord): void {
+    const events = this.window.step(record);
+    this.slots.set(record.tick, { record, events, hash: carriesHash(record.tick) ? this.sim.stateHash() : null });
+  }
+
+  private confirm(tick: number, slot: Slot, theirs: string | null): void {
+    this.slots.delete(tick);
+    this.confirmedRecords.set(tick, slot.record);
+    this.confirmed = tick + 1;
+    if (slot.events.length > 0) this.handlers.confirmedEvents(slot.events);
+    if (theirs === null || slot.hash === null) return;
+    if (slot.hash === theirs) this.verified++;
+    else this.handlers.desync(tick, slot.hash, theirs);
+  }
+}
