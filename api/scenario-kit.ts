@@ -6,3 +6,6 @@ export { detAtan2, detCos, detSin, quatFromAxisAngle, quatFromYaw, wrapAngle } f
 export { Button, type InputCommand } from '../shared/sim/input.ts';
 export type { CharacterState, PlayerCommand, SimEvent, TickInputRecord } from '../shared/sim/types.ts';
 export { CollisionLayer, type BodyHandle, type BodyOptions, type MotionKind, type QuatLike, type ShapeSpec, type Vec3Like } from '../shared/physics/index.ts';
+export type { GameInputFieldSpec, GameInputValues } from '../shared/sim/game-input.ts';
+export type { GameStateFieldSpec, GameStateValues } from '../shared/sim/game-state.ts';
+export type { GameMessageEvent, GameMessageSpec } from '../shared/sim/game-messages.ts';

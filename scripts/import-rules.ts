@@ -18,6 +18,7 @@ const AREA_PREFIXES = [
   ['server/', 'server'],
   ['cli/', 'cli'],
   ['scenarios/', 'scenarios'],
+  ['examples/', 'examples'],
   ['bench/', 'bench'],
   ['tests/', 'tests'],
   ['scripts/', 'scripts'],
@@ -68,6 +69,8 @@ export const MAY_IMPORT: Readonly<Record<Area, readonly Area[] | '*'>> = {
   'api/client': ['sdk', 'shared/protocol', 'shared/sim', ...SHARED_BASE],
   // `taos-physics/physics` for browsers: the wrapper alone (Node gets api/physics-node.ts).
   'api/physics': ['shared/physics', ...SHARED_BASE],
+  // Example games are written against the package's entry points only, as a project that installed it would be.
+  examples: ['api', 'api/client', 'api/physics'],
   bench: '*',
   tests: '*',
   scripts: '*',

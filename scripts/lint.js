@@ -6,7 +6,7 @@ import { join, relative, sep } from 'node:path';
 import { checkImports } from './import-rules.ts';
 
 const root = new URL('..', import.meta.url).pathname;
-const roots = ['shared', 'sdk', 'server', 'cli', 'client', 'scenarios', 'tests', 'bench', 'scripts', 'bin', 'api'];
+const roots = ['shared', 'sdk', 'server', 'cli', 'client', 'scenarios', 'examples', 'tests', 'bench', 'scripts', 'bin', 'api'];
 const skipDirs = new Set(['node_modules', 'dist', 'results', 'fixtures']);
 
 function walk(dir, out) {

@@ -8,10 +8,14 @@ import { ByeReason } from '../shared/protocol/opcodes.ts';
 import { TOKEN_PATTERN } from '../shared/protocol/limits.ts';
 import { checkPlayerName, checkRoomId } from '../shared/protocol/validation.ts';
 import type { ErrorMessage, ServerByeMessage, WelcomeMessage } from '../shared/protocol/server-messages.ts';
-import { NEUTRAL_INPUT, validateInputCommand, type InputCommand } from '../shared/sim/input.ts';
+import { NEUTRAL_INPUT, type InputCommand } from '../shared/sim/input.ts';
+import { gameMessagePayload } from '../shared/sim/game-messages.ts';
+import type { GameStateValue, GameStateValues } from '../shared/sim/game-state.ts';
 import type { BodyDescriptor, SimEvent } from '../shared/sim/types.ts';
 import { RealClock } from './clock.ts';
 import { Emitter } from './emitter.ts';
+import { GameInputMapper, type PlayerInput } from './game-input.ts';
+import { GameStateMirror, type GameStateChange } from './game-state.ts';
 import type { InputLeadOptions } from './input-sender.ts';
 import type { InterpolatedFrame, InterpolationOptions } from './interpolation.ts';
 import { LinkSession, type LinkClosedInfo, type SnapshotInfo } from './link-session.ts';
@@ -75,6 +79,8 @@ export interface NetClientEvents {
   snapshot: SnapshotInfo;
   /** Simulation events, in tick order. */
   events: SimEvent[];
+  /** The room's game state changed (with the snapshot that brought it): the whole state and the changed names. */
+  gameState: GameStateChange;
   /** The server refused something (the connection may stay open). */
   serverError: ErrorMessage;
   /** The server said goodbye. */
@@ -170,6 +176,8 @@ export class NetClient {
   private session: LinkSession | null = null;
   private stateValue: NetClientState = 'connecting';
   private input: InputCommand = { ...NEUTRAL_INPUT };
+  private readonly gameInput = new GameInputMapper();
+  private readonly gameStateMirror = new GameStateMirror();
   private welcomeMsg: WelcomeMessage | null = null;
   private readonly dynamic = new Map<number, BodyDescriptor>();
   private pendingDescriptorRemoval: Array<{ id: number; afterTick: number }> = [];
@@ -236,6 +244,14 @@ export class NetClient {
     return this.closedInfo;
   }
 
+  /**
+   * The room's replicated game state by field name (empty until the first snapshot after a welcome); type it with
+   * your scenario's state: `client.gameState<{ score: number; phase: string }>()`.
+   */
+  gameState<S extends GameStateValues = GameStateValues>(): Readonly<Partial<S>> {
+    return this.gameStateMirror.state as Readonly<Partial<S>>;
+  }
+
   /** Subscribes to an event; returns the unsubscribe function. */
   on<K extends keyof NetClientEvents>(type: K, listener: (payload: NetClientEvents[K]) => void): () => void {
     return this.emitter.on(type, listener);
@@ -248,12 +264,24 @@ export class NetClient {
     return new Promise((resolve, reject) => this.waiters.push({ resolve, reject }));
   }
 
-  /** Sets the command sent for the coming ticks (kept across reconnects); throws on an invalid command. */
-  setInput(cmd: InputCommand): void {
-    const v = validateInputCommand(cmd);
-    if (!v.ok) throw new Error(`setInput: ${v.error}`);
-    this.input = v.command;
-    this.session?.setInput(v.command);
+  /**
+   * Sets the command sent for the coming ticks (kept across reconnects), with the scenario's game input fields by
+   * name (`{...cmd, kick: 1}`); throws on an invalid value or a field the scenario does not declare.
+   */
+  setInput(cmd: InputCommand | PlayerInput): void {
+    this.input = this.gameInput.set(cmd);
+    this.session?.setInput(this.input);
+  }
+
+  /**
+   * Sends a game message the scenario declares (`sendMessage('pickTeam', { team: 1 })`); the server stamps it with its
+   * next tick. Throws while not connected (messages are not queued across reconnects) and for an undeclared name,
+   * payload field or out-of-range value.
+   */
+  sendMessage(name: string, payload: Readonly<Record<string, number>> = {}): void {
+    const session = this.connectedSession();
+    if (!session || !this.welcomeMsg || this.stateValue !== 'connected') throw new Error(`sendMessage(${name}): not connected`);
+    session.sendGameMessage(name, gameMessagePayload(name, payload, this.welcomeMsg.scenario.game?.messages ?? []));
   }
 
   /** The estimated server tick (fractional) at a local time (default now); null before a welcome. */
@@ -362,6 +390,7 @@ export class NetClient {
         welcome: (w) => this.session === session && this.onWelcome(w),
         snapshot: (s) => this.session === session && this.onSnapshot(s),
         events: (e) => this.session === session && this.emitter.emit('events', e),
+        gameState: (values) => this.session === session && this.onGameState(values),
         serverError: (e) => this.session === session && this.emitter.emit('serverError', e),
         bye: (b) => this.session === session && this.emitter.emit('bye', b),
         protocolError: (m) => this.session === session && this.emitter.emit('protocolError', m),
@@ -372,6 +401,11 @@ export class NetClient {
   }
 
   private onWelcome(w: WelcomeMessage): void {
+    const fitted = this.gameInput.welcome(w.scenario.game?.input ?? []);
+    this.input = fitted.command;
+    this.gameStateMirror.welcome(w.scenario.game?.state ?? []);
+    this.session?.setInput(this.input);
+    if (fitted.unknown.length > 0) this.emitter.emit('protocolError', `setInput: the scenario declares no game input ${fitted.unknown.join(', ')}; dropped`);
     this.welcomeMsg = w;
     this.resumeTokenValue = w.resumeToken;
     this.attempts = 0;
@@ -383,6 +417,12 @@ export class NetClient {
     this.setState('connected');
     this.emitter.emit('welcome', w);
     for (const waiter of this.waiters.splice(0)) waiter.resolve(w);
+  }
+
+  private onGameState(values: GameStateValue[]): void {
+    const change = this.gameStateMirror.apply(values);
+    if (typeof change === 'string') this.emitter.emit('protocolError', change);
+    else if (change !== null) this.emitter.emit('gameState', change);
   }
 
   private onSnapshot(s: SnapshotInfo): void {

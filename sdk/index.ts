@@ -3,6 +3,8 @@
 export type { Clock, TimerHandle } from '../shared/clock.ts';
 export { connect, NetClient, type ClosedInfo, type NetClientEvents, type NetClientOptions, type NetClientState, type NetClientStats } from './client.ts';
 export { RealClock } from './clock.ts';
+export type { PlayerInput } from './game-input.ts';
+export type { GameStateChange } from './game-state.ts';
 export { ClockSync, type ClockSyncOptions, type PongSample } from './clock-sync.ts';
 export { InputLead, InputSender, type InputLeadOptions, type InputSenderOptions } from './input-sender.ts';
 export { InterpolationBuffer, slerpInto, type InterpolatedFrame, type InterpolationMode, type InterpolationOptions, type InterpolationStats, type PushOutcome } from './interpolation.ts';

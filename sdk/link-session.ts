@@ -1,6 +1,7 @@
 // One connection's lifetime inside the client: hello → welcome, pings and clock sync, the input loop (target tick =
 // estimated server tick at arrival + adaptive lead, with redundancy), snapshot decode → ack → interpolation, events
 // and errors. NetClient creates a new LinkSession per (re)connection and owns reconnect policy and public events.
+import type { GameStateValue } from '../shared/sim/game-state.ts';
 import type { Clock, TimerHandle } from '../shared/clock.ts';
 import type { ClientMessage } from '../shared/protocol/client-messages.ts';
 import { encodeClientMessage } from '../shared/protocol/codec.ts';
@@ -39,6 +40,8 @@ export interface SnapshotInfo {
 export interface LinkSessionHandlers {
   welcome(w: WelcomeMessage): void;
   snapshot(s: SnapshotInfo): void;
+  /** A snapshot carried the room's game state (values in the welcome's state-field order). */
+  gameState(values: GameStateValue[]): void;
   events(events: SimEvent[]): void;
   serverError(e: ErrorMessage): void;
   bye(b: ServerByeMessage): void;
@@ -185,6 +188,11 @@ export class LinkSession {
     return (bytes * 8) / 1000;
   }
 
+  /** Sends a game message now (after the welcome). */
+  sendGameMessage(name: string, payload: number[]): void {
+    this.send({ type: 'game', name, payload });
+  }
+
   /** Sets the command for ticks from now on. */
   setInput(cmd: InputCommand): void {
     this.sender.setCommand(cmd);
@@ -263,6 +271,7 @@ export class LinkSession {
         return;
       case 'snapshot':
         this.onSnapshot(m.bytes, m.descriptors, sizeBytes, now);
+        if (m.state !== undefined && this.welcomeMsg !== null) this.h.gameState(m.state);
         return;
       case 'events':
         this.h.events(m.events);

@@ -17,6 +17,8 @@ import {
 import { admitSeat, type SessionAccess } from './access/admission.ts';
 import type { ResumeHolder } from './access/resume-tokens.ts';
 import { CloseCode, type ServerConnection } from './connection.ts';
+import { checkGameMessage } from '../shared/sim/game-messages.ts';
+import { fitInputMessage } from './game-input-gate.ts';
 import { DeliveryKind, type HostedRoom, type MemberSink, type RoomEntry, type Seat } from './hosted-room.ts';
 import { OfferResult } from './input-buffer.ts';
 import type { Logger } from './logger.ts';
@@ -215,8 +217,14 @@ export class ClientSession implements MemberSink, ResumeHolder {
           this.end(ByeReason.Flood, `more than ${this.ctx.limits.inputs.perSecond} input messages per second`, CloseCode.PolicyViolation);
           return;
         }
-        for (let i = 0; i < msg.commands.length; i++) {
-          const r = this.seat.offerInput(msg.firstTick + i, msg.commands[i]);
+        const fit = fitInputMessage(msg, this.seat.welcome.scenario.game?.input ?? []);
+        if (!fit.ok) {
+          this.refuse(ErrorCode.BadInput, fit.error);
+          return;
+        }
+        if (fit.clamped > 0) this.ctx.metrics.inputsClamped.inc(fit.clamped);
+        for (let i = 0; i < fit.commands.length; i++) {
+          const r = this.seat.offerInput(msg.firstTick + i, fit.commands[i]);
           if (r === OfferResult.Late) this.stats.inputsLate++;
           else if (r === OfferResult.TooFar) this.stats.inputsTooFar++;
         }
@@ -253,6 +261,15 @@ export class ClientSession implements MemberSink, ResumeHolder {
       case 'netMode':
         this.onNetMode(msg.mode);
         return;
+      case 'game': {
+        if (this.state !== 'joined' || !this.seat) {
+          this.refuse(ErrorCode.UnexpectedMessage, 'game message before the welcome');
+          return;
+        }
+        const refused = checkGameMessage(msg.name, msg.payload, this.seat.welcome.scenario.game?.messages ?? []) ?? this.seat.offerMessage(msg.name, msg.payload);
+        if (refused !== null) this.refuse(ErrorCode.BadMessage, `game: ${refused}`);
+        return;
+      }
     }
   }
 

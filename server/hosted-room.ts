@@ -35,6 +35,11 @@ export interface Seat {
   readonly welcome: WelcomeMessage;
   /** Offers a validated command stamped for `tick`; null when the result is not known here (room in a worker). */
   offerInput(tick: number, command: InputCommand): OfferResult | null;
+  /**
+   * Queues a game message (its kind already checked against the welcome's schema) for the room's next tick; returns
+   * why the room refused it, or null (accepted, or not known here: a room in a worker drops what it refuses).
+   */
+  offerMessage(name: string, payload: readonly number[]): string | null;
   /** The client acknowledged the snapshot of `tick`. */
   acknowledge(tick: number): void;
   /**

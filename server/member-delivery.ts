@@ -22,6 +22,8 @@ export class DeliveringMember implements RoomMember {
   private delivery: NetMode = NetMode.Snapshot;
   /** A checkpoint waiting for the release of its tick's record: it goes out right before that record. */
   private checkpoint: { tick: number; message: Uint8Array } | null = null;
+  /** The game state version this member was last sent (−1: none yet). */
+  private heldStateVersion = -1;
 
   constructor(sink: MemberSink, fanOut: SnapshotFanOut, metrics: ServerMetrics, feed: PredictFeed | null = null) {
     this.sink = sink;
@@ -82,7 +84,8 @@ export class DeliveringMember implements RoomMember {
       this.sink.snapshotSkipped();
       return;
     }
-    const { message, encoded } = this.fanOut.snapshotFor(encoder, frame);
+    const { message, encoded, stateVersion } = this.fanOut.snapshotFor(encoder, frame, this.heldStateVersion);
+    this.heldStateVersion = stateVersion;
     this.sink.deliver(message, DeliveryKind.Snapshot);
     this.metrics.snapshotBytes.observe(message.length);
     this.metrics.snapshotsSent.inc({ kind: encoded.baselineTick === null ? 'full' : 'delta' });

@@ -43,8 +43,14 @@ export interface NetModeDecision {
   note: string | null;
 }
 
-/** Decides a room's net mode from the request, the scenario and its resolved parameters. */
-export function decideNetMode(request: NetModeRequest, scenario: string, params: Readonly<Record<string, number>>): NetModeDecision {
+/**
+ * Decides a room's net mode from the request, the scenario and its resolved parameters. A scenario that uses the game
+ * API (game input, state or messages) is served snapshots: predict mode's records and checkpoints do not carry it.
+ */
+export function decideNetMode(request: NetModeRequest, scenario: string, params: Readonly<Record<string, number>>, usesGameApi = false): NetModeDecision {
+  if (usesGameApi && request !== NetMode.Snapshot) {
+    return { mode: NetMode.Snapshot, affordableRollbackTicks: null, note: `snapshot mode: scenario ${scenario} uses the game API (game input, state or messages), which predict mode does not carry` };
+  }
   const model = Object.hasOwn(COST, scenario) ? COST[scenario] : undefined;
   const estimateMs = model ? model.msPerTick * Math.max(model.load?.(params) ?? 1, 0.01) : null;
   const affordable = estimateMs === null ? null : Math.floor(FRAME_BUDGET_MS / estimateMs);

@@ -38,7 +38,9 @@ export async function openRoom(spec: RoomSpec, opts: OpenRoomOptions): Promise<R
     throw new RoomError(ErrorCode.Internal, `cannot start the recording of room ${id}: ${error instanceof Error ? error.message : String(error)}`);
   }
   const netModeRequested = spec.netMode ?? 'auto';
-  const decision = decideNetMode(netModeRequested, scenario, built.params);
+  const sim = built.sim;
+  const usesGameApi = (sim.gameInputFields?.length ?? 0) + (sim.gameStateFields?.length ?? 0) + (sim.gameMessageKinds?.length ?? 0) > 0;
+  const decision = decideNetMode(netModeRequested, scenario, built.params, usesGameApi);
   return new Room(built.sim, {
     id,
     netMode: decision.mode,

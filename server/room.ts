@@ -5,6 +5,10 @@ import type { Clock } from '../shared/clock.ts';
 import { BODY_STATE_STRIDE, BodyFlag, type Vec3Like } from '../shared/physics/index.ts';
 import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '../shared/sim/types.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
+import type { GameInputField } from '../shared/sim/game-input.ts';
+import type { GameMessageKind } from '../shared/sim/game-messages.ts';
+import { GameMessageQueue } from './game-message-queue.ts';
+import type { GameStateField, GameStateValue } from '../shared/sim/game-state.ts';
 import { NetMode } from '../shared/protocol/predict-messages.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
@@ -36,6 +40,16 @@ export interface RoomSimulation {
   staticDescriptors(): BodyDescriptor[];
   bodyDescriptor(id: number): BodyDescriptor | undefined | null;
   destroy(): void;
+  /** The scenario's game input fields (name order); absent or empty: none. */
+  readonly gameInputFields?: readonly GameInputField[];
+  /** The scenario's game message kinds (name order); absent or empty: none. */
+  readonly gameMessageKinds?: readonly GameMessageKind[];
+  /** The scenario's game state fields (name order); absent or empty: none. */
+  readonly gameStateFields?: readonly GameStateField[];
+  /** Changes whenever the game state does. */
+  readonly gameStateVersion?: number;
+  /** The game state values in field order. */
+  gameStateValues?(): GameStateValue[];
   /** The simulation's byte checkpoint (for checkpoints in recordings), when it has one. */
   saveCheckpointBytes?(): Uint8Array;
   /** The world's WASM heap (for /metrics), when the simulation has one. */
@@ -187,6 +201,7 @@ export class Room implements HostedRoom {
   private readonly opts: RoomOptions;
   private readonly players = new Map<number, Player>();
   private pendingLeaves: number[] = [];
+  private readonly gameMessages = new GameMessageQueue();
   private nextPlayerId = 1;
   private closedReason: string | null = null;
   private snapshotAccumulator = 0;
@@ -219,7 +234,13 @@ export class Room implements HostedRoom {
       if (!save) throw new Error(`room ${opts.id}: predict mode needs a simulation with saveCheckpointBytes()`);
       this.predictFeed = new PredictFeed({ get tick() { return sim.tick; }, stateHash: () => sim.stateHash(), saveCheckpointBytes: save }, opts.seed);
     }
-    this.snapshots = new SnapshotFanOut({ bounds: this.bounds, isSceneStatic: (id) => this.isSceneStatic(id), describe: (id) => sim.bodyDescriptor(id) ?? undefined });
+    this.snapshots = new SnapshotFanOut({
+      bounds: this.bounds,
+      isSceneStatic: (id) => this.isSceneStatic(id),
+      describe: (id) => sim.bodyDescriptor(id) ?? undefined,
+      gameStateVersion: () => ((sim.gameStateFields?.length ?? 0) > 0 ? (sim.gameStateVersion ?? 0) : null),
+      gameStateValues: () => sim.gameStateValues?.() ?? [],
+    });
     const initial = sim.readBodyStates();
     this.lastBodyCount = initial.count;
     for (let i = 0; i < initial.count; i++) if ((initial.flags[i] & BodyFlag.Static) !== 0) this.sceneStatics.add(initial.ids[i]);
@@ -382,6 +403,12 @@ export class Room implements HostedRoom {
     return result;
   }
 
+  /** Queues a player's game message for the next tick; returns why it was refused, or null. */
+  offerMessage(playerId: number, name: string, payload: readonly number[]): string | null {
+    if (!this.players.has(playerId)) return 'not in the room';
+    return this.gameMessages.offer(playerId, name, payload, this.sim.gameMessageKinds ?? []);
+  }
+
   /** Whether a body is part of the scene's built static geometry (sent in the welcome, not in snapshots). */
   isSceneStatic(bodyId: number): boolean {
     return this.sceneStatics.has(bodyId);
@@ -429,7 +456,8 @@ export class Room implements HostedRoom {
       if (taken.repeated) m.inputsRepeated.inc();
       commands.push({ playerId: p.playerId, input: taken.command });
     }
-    const record: TickInputRecord = { tick, leaves, joins, commands };
+    const messages = this.gameMessages.take((id) => this.players.has(id));
+    const record: TickInputRecord = messages.length > 0 ? { tick, leaves, joins, commands, messages } : { tick, leaves, joins, commands };
     this.opts.recorder?.append(record);
     const stepStarted = performance.now();
     const events = this.sim.step(record);

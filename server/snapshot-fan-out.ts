@@ -12,6 +12,7 @@ import {
   type SnapshotFormat,
 } from '../shared/protocol/index.ts';
 import type { Vec3Like } from '../shared/physics/index.ts';
+import type { GameStateValue } from '../shared/sim/game-state.ts';
 import type { BodyDescriptor, SimEvent } from '../shared/sim/types.ts';
 import type { WorldFrame } from './room.ts';
 
@@ -23,6 +24,10 @@ export interface FanOutSource {
   isSceneStatic(bodyId: number): boolean;
   /** A live body's descriptor (spawned bodies travel with the first snapshot that carries them). */
   describe(bodyId: number): BodyDescriptor | undefined;
+  /** The room's game state version now (changes whenever the state does); null when the scenario declares none. */
+  gameStateVersion?(): number | null;
+  /** The game state values in field order. */
+  gameStateValues?(): GameStateValue[];
 }
 
 /** The work one world frame shares between members. */
@@ -38,6 +43,8 @@ interface FrameWork {
 export interface MemberSnapshot {
   message: Uint8Array;
   encoded: EncodedSnapshot;
+  /** The game state version this member now holds (pass it to the next snapshotFor); −1 when there is no game state. */
+  stateVersion: number;
 }
 
 /** A room's shared per-tick snapshot and event work; the room owns one. */
@@ -48,6 +55,7 @@ export class SnapshotFanOut {
   /** The latest quantized frame and the body copies it came from (the next frame's starting point). */
   private last: { bodies: WorldFrame['bodies']; frame: QuantizedFrame } | null = null;
   private events: { list: readonly SimEvent[]; message: Uint8Array } | null = null;
+  private state: { version: number; values: GameStateValue[] } | null = null;
 
   constructor(source: FanOutSource) {
     this.source = source;
@@ -69,17 +77,27 @@ export class SnapshotFanOut {
    * A member's snapshot of `frame` from its encoder. Members that share a baseline and the spawned bodies they still
    * lack get the very same message (a descriptor is the same object for every member within a tick).
    */
-  snapshotFor(encoder: SnapshotEncoder, frame: WorldFrame): MemberSnapshot {
+  snapshotFor(encoder: SnapshotEncoder, frame: WorldFrame, heldStateVersion = -1): MemberSnapshot {
     const work = this.frameWork(frame);
     const encoded = encoder.encode(work.quantized, (id) => work.frame.descriptors?.get(id) ?? this.source.describe(id), work.shared);
-    let key = `${encoded.baselineTick ?? -1}`;
+    // The whole game state rides along when it changed since the member's last snapshot (the link is ordered and
+    // reliable, so what a member got last is what it holds).
+    const stateVersion = this.source.gameStateVersion?.() ?? null;
+    const withState = stateVersion !== null && stateVersion !== heldStateVersion;
+    let key = `${encoded.baselineTick ?? -1}${withState ? 's' : ''}`;
     for (const d of encoded.descriptors) key += `,${d.id}`;
     let message = work.messages.get(key);
     if (!message) {
-      message = encodeServerMessage({ type: 'snapshot', bytes: encoded.bytes, descriptors: encoded.descriptors });
+      const state = withState ? this.stateValues(stateVersion) : undefined;
+      message = encodeServerMessage({ type: 'snapshot', bytes: encoded.bytes, descriptors: encoded.descriptors, ...(state ? { state } : {}) });
       work.messages.set(key, message);
     }
-    return { message, encoded };
+    return { message, encoded, stateVersion: stateVersion ?? -1 };
+  }
+
+  private stateValues(version: number): GameStateValue[] {
+    if (this.state?.version !== version) this.state = { version, values: this.source.gameStateValues?.() ?? [] };
+    return this.state.values;
   }
 
   private frameWork(frame: WorldFrame): FrameWork {

@@ -69,7 +69,7 @@ export class GameLoop {
     // A movement key is handed to the library at once (not at the next 60 Hz sample), and starts a latency measurement.
     this.input.onMoveKeyDown = (atMs) => {
       this.session.setInput(this.input.sample(atMs));
-      this.motion.keyDown(atMs, this.state.framesRendered);
+      this.motion.keyDown(atMs, this.state.framesRendered, this.session.newestInputTick + 1);
     };
     this.rafId = requestAnimationFrame((t) => this.frame(t));
     const intervalMs = 1000 / this.welcome.tickRateHz;

@@ -1,7 +1,7 @@
 // Measures key → own motion on screen: a movement key pressed while the own character stands still starts a
 // measurement; the first drawn frame that shows the character moved ends it (frames drawn since the key, ms, and the
-// frames that drew a newer tick than the key's without the move). Feeds the test hook and the latency figures;
-// touches neither input nor rendering.
+// frames that drew a world in which the key's first tick had run, yet not the move). Feeds the test hook and the
+// latency figures; touches neither input nor rendering.
 
 /** Metres the drawn character must move before the key counts as shown (quantization noise stays below it). */
 const MOVED_METRES = 0.005;
@@ -13,10 +13,15 @@ export interface KeyToMotion {
   /** Milliseconds from the key event to the end of drawing that frame. */
   ms: number;
   /**
-   * Frames drawn after the key that showed a later tick than the last frame before it, yet not the move: 0 when the
-   * first simulated tick after the key already carries it (predicted play); the server's round trip otherwise.
+   * Frames drawn after the key whose world had run the key's first input tick, yet did not show the move: 0 when
+   * every world drawn that contains that tick shows it (as predicted play should); more when the command reached the
+   * simulation that was drawn later than its tick (a late input the server replaced by the previous one).
    */
   staleFrames: number;
+  /** The first input tick the key's command went into. */
+  keyTick: number;
+  /** Ticks the world drawn in the frame that showed the move had run (fractional when interpolated). */
+  shownAfterTicks: number;
 }
 
 type Vec3 = readonly [number, number, number];
@@ -27,8 +32,7 @@ function distance(a: Vec3, b: Vec3): number {
 
 /** Tracks one pending measurement at a time; keeps the last result and how many were taken. */
 export class KeyToMotionMeter {
-  private pending: { atMs: number; framesAtKey: number; tickAtKey: number; from: Vec3; stale: number } | null = null;
-  private lastTick = 0;
+  private pending: { atMs: number; framesAtKey: number; keyTick: number; from: Vec3; stale: number } | null = null;
   private lastDrawn: Vec3 | null = null;
   /** Whether the last two frames drew the own character in the same place. */
   private still = false;
@@ -37,15 +41,20 @@ export class KeyToMotionMeter {
   /** Measurements taken. */
   count = 0;
 
-  /** A movement key went down at `atMs`; starts a measurement when the own character was drawn standing still. */
-  keyDown(atMs: number, framesRendered: number): void {
+  /**
+   * A movement key went down at `atMs`; its command goes into input tick `keyTick` and later. Starts a measurement
+   * when the own character was drawn standing still.
+   */
+  keyDown(atMs: number, framesRendered: number, keyTick: number): void {
     if (this.pending || !this.lastDrawn || !this.still) return;
-    this.pending = { atMs, framesAtKey: framesRendered, tickAtKey: this.lastTick, from: this.lastDrawn, stale: 0 };
+    this.pending = { atMs, framesAtKey: framesRendered, keyTick, from: this.lastDrawn, stale: 0 };
   }
 
-  /** A frame was drawn (framesRendered counts it) showing `tick`, the own character at `position` (null: none). */
-  frameDrawn(nowMs: number, framesRendered: number, tick: number, position: Vec3 | null): void {
-    this.lastTick = tick;
+  /**
+   * A frame was drawn (framesRendered counts it) showing the world after `ticks` ticks had run (fractional when
+   * interpolated), the own character at `position` (null: none drawn).
+   */
+  frameDrawn(nowMs: number, framesRendered: number, ticks: number, position: Vec3 | null): void {
     if (position === null) {
       this.lastDrawn = null;
       this.still = false;
@@ -54,10 +63,10 @@ export class KeyToMotionMeter {
     }
     const p = this.pending;
     if (p && distance(position, p.from) > MOVED_METRES) {
-      this.last = { frames: framesRendered - p.framesAtKey, ms: nowMs - p.atMs, staleFrames: p.stale };
+      this.last = { frames: framesRendered - p.framesAtKey, ms: nowMs - p.atMs, staleFrames: p.stale, keyTick: p.keyTick, shownAfterTicks: ticks };
       this.count++;
       this.pending = null;
-    } else if (p && tick > p.tickAtKey) {
+    } else if (p && ticks >= p.keyTick + 1) {
       p.stale++;
     }
     this.still = this.lastDrawn !== null && distance(position, this.lastDrawn) <= MOVED_METRES;

@@ -50,6 +50,8 @@ export interface NetSession {
   readonly rttMs: number | null;
   /** How many ticks ahead of the server our inputs are stamped (null before the welcome). */
   readonly inputLeadTicks: number | null;
+  /** The newest tick an own command was fixed and sent for (−1 before any): a new command goes into later ticks. */
+  readonly newestInputTick: number;
   /** The interpolated world at `nowMs` (performance.now() clock). */
   frame(nowMs: number): SessionFrame;
   /** The command to send for the coming ticks (the library sends at 60 Hz). */

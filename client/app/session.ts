@@ -45,6 +45,9 @@ export function openSession(wsUrl: string, opts: { name: string; room: string | 
     get inputLeadTicks() {
       return client.stats().leadTicks;
     },
+    get newestInputTick() {
+      return client.stats().newestInputTick;
+    },
     frame(nowMs: number): SessionFrame {
       const f = client.sample(nowMs);
       return { view: f.view, renderTick: f.renderTick, bufferDepth: f.bufferDepth, delayMs: f.delayMs };
@@ -63,6 +66,7 @@ function closedSession(): NetSession {
     serverTick: 0,
     rttMs: null,
     inputLeadTicks: null,
+    newestInputTick: -1,
     frame: () => ({ view: null, renderTick: 0, bufferDepth: 0, delayMs: 0 }),
     setInput: () => undefined,
     close: () => undefined,

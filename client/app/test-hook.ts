@@ -47,7 +47,7 @@ export interface TaosState {
   events: string[];
   net: { rttMs: number; snapshotsPerSecond: number; kbpsIn: number; interpolationDelayMs: number; bufferDepth: number; inputLeadTicks: number };
   /** The last key → own motion measured (client/app/motion-meter.ts), and how many were measured. */
-  keyToMotion: { frames: number; ms: number; staleFrames: number; count: number } | null;
+  keyToMotion: { frames: number; ms: number; staleFrames: number; keyTick: number; shownAfterTicks: number; count: number } | null;
   /** The camera of the last frame (null before one), with the canvas size it was drawn at (device pixels). */
   camera: { eye: number[]; target: number[]; fovYRadians: number; nearMetres: number; farMetres: number; widthPx: number; heightPx: number } | null;
 }

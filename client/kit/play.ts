@@ -15,6 +15,8 @@ export interface PlayOptions extends Partial<Omit<NetClientOptions, 'name'>> {
   name?: string;
   /** Lines for the page to show (joins, refusals, protocol problems); default console.log. */
   log?: (line: string) => void;
+  /** The scenario's game input fields by name, read with every input sent (e.g. `() => ({ kick: keyDown ? 1 : 0 })`). */
+  gameInput?: () => Readonly<Record<string, number>>;
 }
 
 /** A running game view. */
@@ -31,7 +33,7 @@ export async function play(canvas: HTMLCanvasElement, opts: PlayOptions = {}): P
   const renderer = await Renderer.create(canvas);
   const log = opts.log ?? ((line: string) => console.log(line));
   const url = opts.url ?? `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/`;
-  const { url: _url, log: _log, ...clientOptions } = opts;
+  const { url: _url, log: _log, gameInput, ...clientOptions } = opts;
   const client = connect(url, { ...clientOptions, name: opts.name ?? `player-${Math.floor(Math.random() * 9000 + 1000)}` });
   const world = new WorldView(renderer, log);
   const input = new InputController(canvas);
@@ -61,7 +63,8 @@ export async function play(canvas: HTMLCanvasElement, opts: PlayOptions = {}): P
     orbit.frame([b.min.x, b.min.y, b.min.z], [b.max.x, b.max.y, b.max.z]);
     log(`joined ${w.roomId} (${w.scenario.name}) as #${w.playerId}`);
     input.attach();
-    if (inputTimer === null) inputTimer = setInterval(() => client.state !== 'closed' && client.setInput(input.sample()), 1000 / w.tickRateHz);
+    const send = (): void => client.setInput(gameInput ? { ...input.sample(), ...gameInput() } : input.sample());
+    if (inputTimer === null) inputTimer = setInterval(() => client.state !== 'closed' && send(), 1000 / w.tickRateHz);
     if (rafId === 0) rafId = requestAnimationFrame(frame);
   });
   client.on('snapshot', (s) => world.addDescriptors(s.tick, s.descriptors));

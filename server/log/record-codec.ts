@@ -1,6 +1,7 @@
 // Payload codecs of the input-log record types: header, tick (a TickInputRecord, compact binary), hash,
 // checkpoint, end. Encoders validate and throw a clear Error; decoders throw PayloadError. Pure, no I/O.
-import { validateInputCommand, type InputCommand } from '../../shared/sim/input.ts';
+import { MAX_COMMAND_GAME_VALUES, validateInputCommand, type InputCommand } from '../../shared/sim/input.ts';
+import { checkGameMessageShape, MAX_GAME_MESSAGE_FIELDS, type GameMessage } from '../../shared/sim/game-messages.ts';
 import type { PlayerCommand, PlayerJoin, TickInputRecord } from '../../shared/sim/types.ts';
 import { ByteReader, ByteWriter, PayloadError } from '../../shared/byte-io.ts';
 import { LOG_FORMAT_VERSION, MAX_HEADER_STRING_BYTES, MAX_NAME_BYTES, MAX_PLAYER_ID, type LogHeader } from './log-format.ts';
@@ -9,8 +10,12 @@ const SEED_NUMBER = 0;
 const SEED_STRING = 1;
 
 /** Command field-presence bits: a field is stored only when non-zero. */
-const Field = { MoveX: 1, MoveZ: 2, Yaw: 4, Pitch: 8, Buttons: 16 } as const;
-const FIELD_MASK = 31;
+const Field = { MoveX: 1, MoveZ: 2, Yaw: 4, Pitch: 8, Buttons: 16, Game: 32 } as const;
+const FIELD_MASK = 63;
+
+/** Zigzag: signed integers as unsigned varints (0, −1, 1, −2, … → 0, 1, 2, 3, …). */
+const zigzag = (v: number): number => (v < 0 ? -2 * v - 1 : 2 * v);
+const unzigzag = (u: number): number => (u % 2 === 1 ? -(u + 1) / 2 : u / 2);
 
 const textEncoder = new TextEncoder();
 const utf8Bytes = (text: string): number => textEncoder.encode(text).length;
@@ -130,6 +135,17 @@ export function checkTickRecord(rec: TickInputRecord): void {
     if (!v.ok) throw new Error(`${where}: command of player ${c.playerId} is invalid: ${v.error}`);
     if (v.clamped) throw new Error(`${where}: command of player ${c.playerId} is not a validated InputCommand (pass it through validateInputCommand first)`);
   }
+  if (rec.messages === undefined) return;
+  if (!Array.isArray(rec.messages)) throw new Error(`${where}: messages must be an array`);
+  prev = -1;
+  for (const m of rec.messages) {
+    if (m === null || typeof m !== 'object') throw new Error(`${where}: a message must be an object`);
+    const id = checkPlayerId(m.playerId, `${where} messages`);
+    if (id < prev) throw new Error(`${where} messages: player ids must be sorted ascending (${prev} then ${id})`);
+    prev = id;
+    const shape = checkGameMessageShape(m.name, m.payload);
+    if (!shape.ok) throw new Error(`${where}: message of player ${id}: ${shape.error}`);
+  }
 }
 
 function checkNextId(id: unknown, prev: number, where: string): number {
@@ -144,13 +160,26 @@ function writeCommand(w: ByteWriter, cmd: InputCommand): void {
     (cmd.moveZ !== 0 ? Field.MoveZ : 0) |
     (cmd.yaw !== 0 ? Field.Yaw : 0) |
     (cmd.pitch !== 0 ? Field.Pitch : 0) |
-    (cmd.buttons !== 0 ? Field.Buttons : 0);
+    (cmd.buttons !== 0 ? Field.Buttons : 0) |
+    (cmd.game !== undefined && cmd.game.length > 0 ? Field.Game : 0);
   w.u8(mask);
   if (mask & Field.MoveX) w.i8(cmd.moveX);
   if (mask & Field.MoveZ) w.i8(cmd.moveZ);
   if (mask & Field.Yaw) w.u16(cmd.yaw);
   if (mask & Field.Pitch) w.i16(cmd.pitch);
   if (mask & Field.Buttons) w.u8(cmd.buttons);
+  if (mask & Field.Game) {
+    w.uvarint(cmd.game!.length);
+    for (const v of cmd.game!) w.uvarint(zigzag(v));
+  }
+}
+
+function readGame(r: ByteReader, playerId: number): number[] {
+  const n = r.uvarint('game input count');
+  if (n === 0 || n > MAX_COMMAND_GAME_VALUES) throw new PayloadError(`command of player ${playerId} has ${n} game input values (1..${MAX_COMMAND_GAME_VALUES})`);
+  const game: number[] = [];
+  for (let i = 0; i < n; i++) game.push(unzigzag(r.uvarint('game input value')));
+  return game;
 }
 
 /** Encodes a tick record payload as a fresh array (validated first). */
@@ -176,6 +205,36 @@ export function writeTickPayload(w: ByteWriter, rec: TickInputRecord): void {
     w.uvarint(c.playerId);
     writeCommand(w, c.input);
   }
+  // Game messages follow only when there are any, so records without them keep their earlier bytes.
+  if (rec.messages !== undefined && rec.messages.length > 0) {
+    w.uvarint(rec.messages.length);
+    for (const m of rec.messages) {
+      w.uvarint(m.playerId);
+      w.varintPrefixedString(m.name);
+      w.uvarint(m.payload.length);
+      for (const v of m.payload) w.uvarint(zigzag(v));
+    }
+  }
+}
+
+function readMessages(r: ByteReader): GameMessage[] {
+  const n = r.uvarint('message count');
+  if (n === 0) throw new PayloadError('trailing bytes after the commands: not a game message section (count 0)');
+  const out: GameMessage[] = [];
+  for (let i = 0, prev = -1; i < n; i++) {
+    const playerId = r.uvarint('message player id');
+    if (playerId > MAX_PLAYER_ID || playerId < prev) throw new PayloadError(`message player id ${playerId} out of range or not sorted (after ${prev})`);
+    prev = playerId;
+    const name = r.varintPrefixedString(64, 'message name');
+    const count = r.uvarint('message payload count');
+    if (count > MAX_GAME_MESSAGE_FIELDS) throw new PayloadError(`message ${name} has ${count} payload values (at most ${MAX_GAME_MESSAGE_FIELDS})`);
+    const payload: number[] = [];
+    for (let k = 0; k < count; k++) payload.push(unzigzag(r.uvarint('message payload value')));
+    const shape = checkGameMessageShape(name, payload);
+    if (!shape.ok) throw new PayloadError(`message of player ${playerId}: ${shape.error}`);
+    out.push({ playerId, name, payload });
+  }
+  return out;
 }
 
 function readPlayerId(r: ByteReader, prev: number, what: string): number {
@@ -214,12 +273,18 @@ export function decodeTick(payload: Uint8Array, start = 0, end = payload.length)
       pitch: mask & Field.Pitch ? r.i16('pitch') : 0,
       buttons: mask & Field.Buttons ? r.u8('buttons') : 0,
     };
+    if (mask & Field.Game) input.game = readGame(r, playerId);
     const v = validateInputCommand(input);
     if (!v.ok || v.clamped) throw new PayloadError(`command of player ${playerId} is out of range`);
     commands.push({ playerId, input });
   }
+  if (r.remaining === 0) {
+    r.expectEnd('tick record');
+    return { tick, leaves, joins, commands };
+  }
+  const messages = readMessages(r);
   r.expectEnd('tick record');
-  return { tick, leaves, joins, commands };
+  return { tick, leaves, joins, commands, messages };
 }
 
 function hexDigit(code: number): number {

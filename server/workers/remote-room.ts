@@ -19,6 +19,7 @@ export interface RoomThreadLink {
   detach(room: string, playerId: number): void;
   close(room: string, reason: string): Promise<void>;
   queueInput(member: number, tick: number, command: InputCommand): void;
+  queueMessage(member: number, name: string, payload: readonly number[]): void;
   queueAck(member: number, tick: number): void;
   /** Serve the member in predict mode (again: a resync) or on snapshots. */
   queueNetMode(member: number, mode: NetMode): void;
@@ -112,6 +113,10 @@ export class RemoteRoom implements HostedRoom {
       welcome: entered.welcome,
       offerInput: (tick, command) => {
         thread.queueInput(member, tick, command);
+        return null;
+      },
+      offerMessage: (name, payload) => {
+        thread.queueMessage(member, name, payload);
         return null;
       },
       acknowledge: (tick) => thread.queueAck(member, tick),

@@ -27,7 +27,7 @@ interface Pending {
   reject(error: Error): void;
 }
 
-const emptyTraffic = (): MemberTraffic => ({ inputs: [], acks: [], pressure: [], netModes: [] });
+const emptyTraffic = (): MemberTraffic => ({ inputs: [], messages: [], acks: [], pressure: [], netModes: [] });
 
 /** A started room worker. */
 export class RoomThread implements RoomThreadLink {
@@ -136,6 +136,11 @@ export class RoomThread implements RoomThreadLink {
     this.scheduleFlush();
   }
 
+  queueMessage(member: number, name: string, payload: readonly number[]): void {
+    this.traffic.messages.push({ member, name, payload: [...payload] });
+    this.scheduleFlush();
+  }
+
   queueAck(member: number, tick: number): void {
     this.traffic.acks.push(member, tick);
     this.scheduleFlush();
@@ -166,7 +171,7 @@ export class RoomThread implements RoomThreadLink {
       this.flushPending = false;
       const traffic = this.traffic;
       this.traffic = emptyTraffic();
-      if (traffic.inputs.length + traffic.acks.length + traffic.pressure.length + traffic.netModes.length > 0) this.post({ t: 'traffic', traffic });
+      if (traffic.inputs.length + traffic.messages.length + traffic.acks.length + traffic.pressure.length + traffic.netModes.length > 0) this.post({ t: 'traffic', traffic });
     });
   }
 

@@ -148,11 +148,12 @@ export class WorkerRooms {
         return;
       }
       case 'traffic': {
-        const { inputs, acks, pressure, netModes } = msg.traffic;
+        const { inputs, messages, acks, pressure, netModes } = msg.traffic;
         for (const input of inputs) {
           const m = this.members.get(input.member);
           if (m) for (let i = 0; i < input.commands.length; i++) m.seat.offerInput(input.firstTick + i, input.commands[i]);
         }
+        for (const g of messages) this.members.get(g.member)?.seat.offerMessage(g.name, g.payload);
         for (let i = 0; i < acks.length; i += 2) this.members.get(acks[i])?.seat.acknowledge(acks[i + 1]);
         for (let i = 0; i < pressure.length; i += 2) {
           const m = this.members.get(pressure[i]);

@@ -46,5 +46,13 @@ export interface ClientByeMessage {
   type: 'bye';
 }
 
+/** A game message: a kind the scenario declares and its payload in the kind's field order (stamped by the server). */
+export interface GameMessageMessage {
+  type: 'game';
+  name: string;
+  /** At most 8 integers within ±1 000 000. */
+  payload: number[];
+}
+
 /** Every client→server message. */
-export type ClientMessage = HelloMessage | InputMessage | SnapshotAckMessage | PingMessage | ClientByeMessage | ResyncMessage | NetModeMessage;
+export type ClientMessage = HelloMessage | InputMessage | SnapshotAckMessage | PingMessage | ClientByeMessage | ResyncMessage | NetModeMessage | GameMessageMessage;

@@ -5,6 +5,7 @@ import { Packr, Unpackr } from 'msgpackr';
 import type { SimEvent } from '../sim/types.ts';
 import type { ClientMessage } from './client-messages.ts';
 import { packDescriptors } from './descriptor-codec.ts';
+import { packGameSchema } from './game-schema-codec.ts';
 import { scanMsgpack } from './msgpack-scan.ts';
 import { ClientOpcode, ServerOpcode } from './opcodes.ts';
 import type { ServerMessage } from './server-messages.ts';
@@ -84,7 +85,7 @@ export function encodeClientMessage(m: ClientMessage): Uint8Array {
       return packr.pack(m.seatToken !== undefined || m.resumeToken !== undefined ? [...base, options] : base);
     }
     case 'input':
-      return packr.pack([ClientOpcode.Input, m.firstTick, m.commands.map((c) => [c.moveX, c.moveZ, c.yaw, c.pitch, c.buttons])]);
+      return packr.pack([ClientOpcode.Input, m.firstTick, m.commands.map((c) => (c.game !== undefined && c.game.length > 0 ? [c.moveX, c.moveZ, c.yaw, c.pitch, c.buttons, [...c.game]] : [c.moveX, c.moveZ, c.yaw, c.pitch, c.buttons]))]);
     case 'ack':
       return packr.pack([ClientOpcode.SnapshotAck, m.tick]);
     case 'ping':
@@ -95,6 +96,8 @@ export function encodeClientMessage(m: ClientMessage): Uint8Array {
       return packr.pack([ClientOpcode.Resync]);
     case 'netMode':
       return packr.pack([ClientOpcode.NetMode, m.mode]);
+    case 'game':
+      return packr.pack([ClientOpcode.GameMessage, m.name, [...m.payload]]);
   }
 }
 
@@ -134,6 +137,7 @@ export function encodeServerMessage(m: ServerMessage): Uint8Array {
               min: { x: m.scenario.bounds.min.x, y: m.scenario.bounds.min.y, z: m.scenario.bounds.min.z },
               max: { x: m.scenario.bounds.max.x, y: m.scenario.bounds.max.y, z: m.scenario.bounds.max.z },
             },
+            ...packGameSchema(m.scenario.game ?? {}),
           },
           snapshotFormat: { positionSteps: [...m.snapshotFormat.positionSteps], rotationBits: m.snapshotFormat.rotationBits },
           staticBodies: packDescriptors(m.staticBodies),
@@ -147,6 +151,7 @@ export function encodeServerMessage(m: ServerMessage): Uint8Array {
     case 'pong':
       return packr.pack([ServerOpcode.Pong, m.clientTimeMs, m.serverTick, m.serverTimeMs, m.missedInputTicks]);
     case 'snapshot':
+      if (m.state !== undefined) return packr.pack([ServerOpcode.Snapshot, m.bytes, m.descriptors.length > 0 ? packDescriptors(m.descriptors) : null, m.state]);
       return packr.pack([ServerOpcode.Snapshot, m.bytes, m.descriptors.length > 0 ? packDescriptors(m.descriptors) : null]);
     case 'events':
       return packr.pack([ServerOpcode.Events, m.events.map(plainEvent)]);

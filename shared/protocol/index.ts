@@ -1,6 +1,6 @@
 // Public surface of the wire protocol: the server and the client library import from here (pure, isomorphic).
 export { BitReader, BitWriter, bestExpGolombOrder, bitsFor, expGolombBits, unzigzag, zigzag } from './bit-stream.ts';
-export type { ClientByeMessage, ClientMessage, HelloMessage, InputMessage, PingMessage, SnapshotAckMessage } from './client-messages.ts';
+export type { ClientByeMessage, ClientMessage, GameMessageMessage, HelloMessage, InputMessage, PingMessage, SnapshotAckMessage } from './client-messages.ts';
 export { decodeFrame, encodeClientMessage, encodeServerMessage, FrameError, MAX_SERVER_FRAME_DEPTH, packValue, toBytes, unpackFrame, type FrameDecode } from './codec.ts';
 export { packDescriptors, parseShape, unpackDescriptors, type PackedDescriptors } from './descriptor-codec.ts';
 export * from './limits.ts';
@@ -19,6 +19,7 @@ export {
   type SnapshotFormat,
   type SnapshotFormatSpec,
 } from './quantization.ts';
+export { checkGameStateValues, packGameSchema, unpackGameSchema, type GameSchemaInfo, type StateFieldInfo } from './game-schema-codec.ts';
 export { decodeServerMessage, type ServerDecodeResult } from './server-message-decoder.ts';
 export type { ErrorMessage, EventsMessage, PongMessage, ScenarioInfo, ServerByeMessage, ServerMessage, SnapshotMessage, WelcomeMessage } from './server-messages.ts';
 export { decodeSnapshot, encodeSnapshot, readSnapshotHeader, type SnapshotHeader } from './snapshot-codec.ts';

@@ -5,9 +5,11 @@
  * Bumped on any incompatible change to a message or the snapshot bit layout; hello and welcome must agree.
  * 2: hello's optional options map (seat and resume tokens); the welcome's resume fields; seat/resume codes.
  * 3: predict mode: the welcome's netMode, checkpoint and record messages, resync and netMode requests.
- * 4: the bye reason `room-moved` (and error code) with the hosting server's URL as the bye's fourth element.
+ * 4: the game API: game input values in input commands, the welcome's game schema, game state in snapshots, game
+ *    messages (docs/protocol.md, docs/game-api.md).
+ * 5: the bye reason `room-moved` (and error code) with the hosting server's URL as the bye's fourth element.
  */
-export const PROTOCOL_VERSION = 4;
+export const PROTOCOL_VERSION = 5;
 
 /** Opcodes of messages a client sends to the server (1–15). */
 export const ClientOpcode = {
@@ -18,6 +20,8 @@ export const ClientOpcode = {
   Bye: 5,
   Resync: 6,
   NetMode: 7,
+  /** A game message (ScenarioDefinition.messages): protocol 4. */
+  GameMessage: 8,
 } as const;
 export type ClientOpcode = (typeof ClientOpcode)[keyof typeof ClientOpcode];
 

@@ -4,13 +4,14 @@ import { describeValue } from '../sim/describe-value.ts';
 import type { SimEvent } from '../sim/types.ts';
 import { decodeFrame, MAX_SERVER_FRAME_DEPTH, toBytes } from './codec.ts';
 import { unpackDescriptors } from './descriptor-codec.ts';
+import { checkGameStateValues, unpackGameSchema, type GameSchemaInfo } from './game-schema-codec.ts';
 import { validateInputCommand } from '../sim/input.ts';
 import type { PlayerJoin } from '../sim/types.ts';
 import { MAX_NAME_LENGTH, MAX_TOKEN_LENGTH, TOKEN_PATTERN } from './limits.ts';
 import { isNetMode, MAX_CHECKPOINT_BYTES, type CheckpointMessage, type NetMode, type RecordMessage } from './predict-messages.ts';
 import { MAX_RECORD_MEMBERSHIP_CHANGES, type PlayerInputState } from './record-delta.ts';
 import { PROTOCOL_VERSION, ServerOpcode, type ByeReason, type ErrorCode } from './opcodes.ts';
-import type { ScenarioInfo, ServerMessage, WelcomeMessage } from './server-messages.ts';
+import type { ScenarioInfo, ServerMessage, SnapshotMessage, WelcomeMessage } from './server-messages.ts';
 
 /**
  * A decoded server message, or why it could not be decoded; `serverVersion` is set when the frame is a welcome of
@@ -64,12 +65,20 @@ function decodeScenario(v: unknown): ScenarioInfo {
   const params: Record<string, number> = {};
   for (const [k, p] of Object.entries(v.params)) params[k] = num(p, `welcome.scenario.params.${k}`);
   need(isObject(v.bounds), 'welcome.scenario.bounds must be {min, max}');
-  return {
+  const info: ScenarioInfo = {
     name: str(v.name, 'welcome.scenario.name'),
     description: str(v.description, 'welcome.scenario.description'),
     params,
     bounds: { min: vec3(v.bounds.min, 'welcome.scenario.bounds.min'), max: vec3(v.bounds.max, 'welcome.scenario.bounds.max') },
   };
+  let game: GameSchemaInfo;
+  try {
+    game = unpackGameSchema(v, 'welcome.scenario');
+  } catch (err) {
+    throw new DecodeError((err as Error).message);
+  }
+  if (Object.keys(game).length > 0) info.game = game;
+  return info;
 }
 
 function decodeWelcome(v: unknown): WelcomeMessage {
@@ -198,12 +207,18 @@ function decode(value: unknown): ServerMessage {
         missedInputTicks: int(value[4], 'pong.missedInputTicks'),
       };
     case ServerOpcode.Snapshot: {
-      arity(3, 'snapshot');
+      need(value.length === 3 || value.length === 4, `snapshot must have 2 or 3 fields, got ${value.length - 1}`);
       need(value[1] instanceof Uint8Array, 'snapshot.bytes must be binary');
       const descriptors = value[2] === null ? [] : unpackDescriptors(value[2], 'snapshot.descriptors');
       const raw = value[1] as Uint8Array;
       // A plain Uint8Array view (Node's msgpackr hands out Buffers).
-      return { type: 'snapshot', bytes: new Uint8Array(raw.buffer, raw.byteOffset, raw.byteLength), descriptors };
+      const message: SnapshotMessage = { type: 'snapshot', bytes: new Uint8Array(raw.buffer, raw.byteOffset, raw.byteLength), descriptors };
+      if (value.length === 4) {
+        const state = checkGameStateValues(value[3]);
+        need(typeof state !== 'string', `snapshot.state ${state as string}`);
+        message.state = state;
+      }
+      return message;
     }
     case ServerOpcode.Events: {
       arity(2, 'events');

@@ -1,7 +1,9 @@
 // Messages the server sends to a client, as typed objects (the wire form of each is in codec.ts and
 // docs/protocol.md). The client decodes them with server-message-decoder.ts.
+import type { GameStateValue } from '../sim/game-state.ts';
 import type { BodyDescriptor, SimEvent } from '../sim/types.ts';
 import type { ByeReason, ErrorCode } from './opcodes.ts';
+import type { GameSchemaInfo } from './game-schema-codec.ts';
 import type { CheckpointMessage, NetMode, RecordMessage } from './predict-messages.ts';
 import type { Bounds, SnapshotFormatSpec } from './quantization.ts';
 
@@ -13,6 +15,8 @@ export interface ScenarioInfo {
   params: Record<string, number>;
   /** The region bodies live in (also the snapshot position grid). */
   bounds: Bounds;
+  /** The scenario's game-defined input (and, later, state and messages); absent parts: none declared. */
+  game?: GameSchemaInfo;
 }
 
 /** Answer to hello: who you are, where the room's clock stands, and everything needed to draw the world. */
@@ -60,6 +64,8 @@ export interface SnapshotMessage {
   type: 'snapshot';
   bytes: Uint8Array;
   descriptors: BodyDescriptor[];
+  /** The whole game state (values in the welcome's state-field order), present only when it changed since the last one sent. */
+  state?: GameStateValue[];
 }
 
 /** Simulation events (sensor, join/leave, spawn/remove, scenario), reliable and in tick order. */

@@ -2,6 +2,7 @@
 // and ranges, finite numbers, and each input command through the one validator (validateInputCommand). Total: never
 // throws for any bytes, and error texts describe values without running any of their code (describeValue).
 import { describeValue } from '../sim/describe-value.ts';
+import { checkGameMessageShape } from '../sim/game-messages.ts';
 import { validateInputCommand, type InputCommand } from '../sim/input.ts';
 import type { ClientMessage, HelloMessage } from './client-messages.ts';
 import { decodeFrame, toBytes } from './codec.ts';
@@ -113,8 +114,8 @@ function decodeInput(fields: unknown[]): ClientDecodeResult {
   let clamped = 0;
   for (let i = 0; i < list.length; i++) {
     const c = list[i];
-    if (!Array.isArray(c) || c.length !== 5) return bad(`input.commands[${i}] must be [moveX, moveZ, yaw, pitch, buttons]`, ErrorCode.BadInput);
-    const v = validateInputCommand({ moveX: c[0], moveZ: c[1], yaw: c[2], pitch: c[3], buttons: c[4] });
+    if (!Array.isArray(c) || (c.length !== 5 && c.length !== 6)) return bad(`input.commands[${i}] must be [moveX, moveZ, yaw, pitch, buttons] or [moveX, moveZ, yaw, pitch, buttons, [game…]]`, ErrorCode.BadInput);
+    const v = validateInputCommand({ moveX: c[0], moveZ: c[1], yaw: c[2], pitch: c[3], buttons: c[4], game: c.length === 6 ? c[5] : undefined });
     if (!v.ok) return bad(`input.commands[${i}] (tick ${firstTick + i}): ${v.error}`, ErrorCode.BadInput);
     if (v.clamped) clamped++;
     commands.push(v.command);
@@ -151,6 +152,13 @@ export function decodeClientMessage(data: unknown, maxBytes: number = MAX_CLIENT
       const t = value[1];
       if (typeof t !== 'number' || !Number.isFinite(t) || Math.abs(t) > MAX_CLIENT_TIME_MS) return bad(`ping.clientTimeMs must be a finite number within ±${MAX_CLIENT_TIME_MS}, got ${describeValue(t)}`);
       return { ok: true, message: { type: 'ping', clientTimeMs: t }, clampedCommands: 0 };
+    }
+    case ClientOpcode.GameMessage: {
+      const wrong = arity(value, 3, 'game');
+      if (wrong) return wrong;
+      const shape = checkGameMessageShape(value[1], value[2]);
+      if (!shape.ok) return bad(`game.${shape.error}`);
+      return { ok: true, message: { type: 'game', name: shape.name, payload: shape.payload }, clampedCommands: 0 };
     }
     case ClientOpcode.Bye: {
       const wrong = arity(value, 1, 'bye');

@@ -5,6 +5,7 @@ import type { BodyRecord } from './body-registry.ts';
 import type { Bullet } from './bullets.ts';
 import { ByteReader, ByteWriter } from '../byte-io.ts';
 import { restoreData, type CheckpointData } from './checkpoint.ts';
+import { hasGameSection, readGameSection, TAG_GAME, writeGameSection } from './game-section.ts';
 import { CHARACTER_SHAPE, type PlayerSnapshot } from './players.ts';
 import { readRecord, recordBytes, writeRecord } from './recipe-codec.ts';
 import type { SimCore } from './sim-core.ts';
@@ -82,6 +83,7 @@ export function encodeCheckpoint(core: SimCore, d: CheckpointData): Uint8Array {
     w.u32(d.characterStates.size);
     for (const [id, bytes] of d.characterStates) w.u32(id).u32PrefixedBytes(bytes);
   });
+  if (hasGameSection(core)) section(w, TAG_GAME, () => writeGameSection(w, d));
   const [a, b] = checksum(w.finish(), w.length);
   w.u32(a).u32(b);
   return w.finish();
@@ -131,7 +133,7 @@ function readState(r: ByteReader): Omit<CheckpointData, 'records' | 'characterSt
   const carriedSensor: SensorEvent[] = [];
   const ne = r.count('carried sensor events', 9);
   for (let i = 0; i < ne; i++) carriedSensor.push({ kind: r.u8('event kind') === 1 ? 'enter' : 'exit', sensorId: r.u32('sensor id'), otherId: r.u32('other id') });
-  return { tick, prng, joinCount, nextBodyId, constraintCount, slots, players, bullets, scenarioState, overlaps, carriedSensor };
+  return { tick, prng, joinCount, nextBodyId, constraintCount, slots, players, bullets, scenarioState, gameState: [], overlaps, carriedSensor };
 }
 
 function expectSection(r: ByteReader, tag: number, name: string): ByteReader {
@@ -171,6 +173,8 @@ export function decodeCheckpoint(core: SimCore, bytes: Uint8Array): void {
   const characterStates = new Map<number, Uint8Array>();
   const nc = cr.count('character count', 8);
   for (let i = 0; i < nc; i++) characterStates.set(cr.u32('character player'), cr.u32PrefixedBytes('character state'));
+  if (hasGameSection(core)) state.gameState = readGameSection(expectSection(r, TAG_GAME, 'game'), state.players, core);
+  else if (r.remaining > 0) throw new Error('checkpoint: a game section, but this scenario declares no game input or state');
   const data: CheckpointData = { ...state, records, characterStates };
   const J = core.world.jolt;
   const same = (live: BodyRecord, saved: BodyRecord): boolean => {

@@ -5,6 +5,7 @@ import { FastStateBuffer, type BodyIdAllocatorState, type SensorEvent } from '..
 import { worldInternals } from '../physics/internal.ts';
 import type { BodyRecord } from './body-registry.ts';
 import type { Bullet } from './bullets.ts';
+import type { GameStateValue } from './game-state.ts';
 import { createCharacter, type PlayerSnapshot } from './players.ts';
 import { destroyBody, recreateBody, type SimCore } from './sim-core.ts';
 
@@ -22,6 +23,8 @@ export interface CheckpointData {
   /** Every live body's record (characters included), ascending id. */
   records: BodyRecord[];
   scenarioState: number[] | null;
+  /** Game state values in field order (empty when the scenario declares none). */
+  gameState: GameStateValue[];
   /** SensorHub.exportOverlaps() rows. */
   overlaps: number[];
   carriedSensor: SensorEvent[];
@@ -92,6 +95,7 @@ export function captureData(core: SimCore, what: string): CheckpointData {
     bullets: core.bullets.snapshot(),
     records: core.registry.all(),
     scenarioState: core.instance.saveState ? core.instance.saveState().slice() : null,
+    gameState: core.gameState.list(),
     overlaps: worldInternals(core.world).sensorHub.exportOverlaps(),
     carriedSensor: core.carriedSensor.map((e) => ({ ...e })),
     constraintCount: core.world.constraintCount,
@@ -179,6 +183,7 @@ export function restoreData(core: SimCore, data: CheckpointData, restorePhysics:
     core.players.joinCount = data.joinCount;
     core.bullets.restore(data.bullets);
     if (data.scenarioState && core.instance.restoreState) core.instance.restoreState(data.scenarioState.slice());
+    core.gameState.restore(data.gameState);
     core.tickEvents = [];
     core.failure = null;
   } catch (err) {

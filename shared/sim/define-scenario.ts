@@ -1,6 +1,9 @@
 // defineScenario: the public way to write a scenario. Checks a definition once, up front (each mistake a clear Error
 // naming the field), fills the optional parts, freezes it and brands it so a loader can tell a scenario module's
 // export from anything else. Pure: runs in Node and browsers alike.
+import { resolveGameInputFields } from './game-input.ts';
+import { resolveGameMessageKinds } from './game-messages.ts';
+import { resolveGameStateFields } from './game-state.ts';
 import { resolvePlayerRules } from './players.ts';
 import { resolveParams, type ParamSpec, type ScenarioDefinition } from './scenario.ts';
 
@@ -62,8 +65,8 @@ function callerUrl(): string | null {
 
 /**
  * Checks and freezes a scenario: name (lower-case letters, digits, `.`, `_`, `-`; at most 64), description,
- * parameters (defaults inside their limits), bounds, player rules, golden run and `build`. Throws a clear Error on
- * the first mistake. The result is what a scenario module exports (`export const scenario = defineScenario({...})`).
+ * parameters (defaults inside their limits), bounds, player rules, golden run, game input, state and messages, and
+ * `build`. Throws a clear Error on the first mistake. The result is what a scenario module exports (`export const scenario = defineScenario({...})`).
  */
 export function defineScenario<T extends ScenarioInput>(input: T): DefinedScenario & Omit<T, 'params' | 'golden'> {
   if (input === null || typeof input !== 'object') throw new Error('defineScenario: expects an object {name, description, bounds, build, …}');
@@ -94,6 +97,9 @@ export function defineScenario<T extends ScenarioInput>(input: T): DefinedScenar
   try {
     resolveParams(def);
     resolvePlayerRules(def.players, `scenario ${name}`);
+    resolveGameInputFields(def.input, name);
+    resolveGameStateFields(def.state, name);
+    resolveGameMessageKinds(def.messages, name);
   } catch (err) {
     fail(name, (err as Error).message);
   }

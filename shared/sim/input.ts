@@ -28,7 +28,17 @@ export interface InputCommand {
   yaw: number;
   pitch: number;
   buttons: number;
+  /**
+   * Game-defined input values (ScenarioDefinition.input), one integer per declared field in name order; absent or
+   * empty when the scenario declares none. The simulation fills a missing array with zeros.
+   */
+  game?: readonly number[];
 }
+
+/** Most game input values one command may carry (the scenario's declaration bounds them further). */
+export const MAX_COMMAND_GAME_VALUES = 16;
+/** Largest magnitude of one game input value. */
+export const MAX_COMMAND_GAME_ABS = 1_000_000;
 
 /** The idle command: no movement, facing yaw 0, level. */
 export const NEUTRAL_INPUT: Readonly<InputCommand> = Object.freeze({ moveX: 0, moveZ: 0, yaw: 0, pitch: 0, buttons: 0 });
@@ -70,8 +80,29 @@ function validate(r: Record<string, unknown>): InputValidation {
     return { ok: false, error: `buttons must be a non-negative integer bit set, got ${describeValue(rawButtons)}` };
   }
   const buttons = rawButtons & BUTTON_MASK;
-  const clamped = moveX.clamped || moveZ.clamped || pitch.clamped || yaw !== rawYaw || buttons !== rawButtons;
-  return { ok: true, command: { moveX: moveX.v, moveZ: moveZ.v, yaw, pitch: pitch.v, buttons }, clamped };
+  const game = gameValues(r.game);
+  if (typeof game === 'string') return { ok: false, error: game };
+  const clamped = moveX.clamped || moveZ.clamped || pitch.clamped || yaw !== rawYaw || buttons !== rawButtons || game.clamped;
+  const command: InputCommand = { moveX: moveX.v, moveZ: moveZ.v, yaw, pitch: pitch.v, buttons };
+  if (game.values.length > 0) command.game = game.values;
+  return { ok: true, command, clamped };
+}
+
+// Game values: an array of at most MAX_COMMAND_GAME_VALUES finite numbers, each made a canonical integer within
+// ±MAX_COMMAND_GAME_ABS (the scenario's own ranges are applied by fitGameInput, which knows them).
+function gameValues(raw: unknown): { values: number[]; clamped: boolean } | string {
+  if (raw === undefined) return { values: [], clamped: false };
+  if (!Array.isArray(raw)) return `game must be an array of numbers, got ${describeValue(raw)}`;
+  if (raw.length > MAX_COMMAND_GAME_VALUES) return `game must have at most ${MAX_COMMAND_GAME_VALUES} values, got ${raw.length}`;
+  const values: number[] = [];
+  let clamped = false;
+  for (let i = 0; i < raw.length; i++) {
+    const v = intIn(raw[i], -MAX_COMMAND_GAME_ABS, MAX_COMMAND_GAME_ABS, `game[${i}]`);
+    if (typeof v === 'string') return v;
+    clamped ||= v.clamped;
+    values.push(v.v);
+  }
+  return { values, clamped };
 }
 
 /**
@@ -116,5 +147,11 @@ export function pitchRadians(cmd: InputCommand): number {
 
 /** Whether two commands are identical. */
 export function sameInput(a: InputCommand, b: InputCommand): boolean {
-  return a.moveX === b.moveX && a.moveZ === b.moveZ && a.yaw === b.yaw && a.pitch === b.pitch && a.buttons === b.buttons;
+  return a.moveX === b.moveX && a.moveZ === b.moveZ && a.yaw === b.yaw && a.pitch === b.pitch && a.buttons === b.buttons && sameGame(a.game, b.game);
+}
+
+function sameGame(a: readonly number[] | undefined, b: readonly number[] | undefined): boolean {
+  const x = a ?? [];
+  const y = b ?? [];
+  return x.length === y.length && x.every((v, i) => v === y[i]);
 }

@@ -1,6 +1,7 @@
 // The ScenarioContext a Simulation hands its scenario: spawn/remove with events and records, emit, the tick, the
 // characters and the tick's inputs. Rejects what a checkpoint could not carry (callbacks on bodies spawned mid-run).
 import type { BodyHandle, QuatLike, ShapeSpec, Vec3Like } from '../physics/index.ts';
+import { gameInputValues, type GameInputValues } from './game-input.ts';
 import type { ScenarioContext, SpawnOptions } from './scenario.ts';
 import { createBody, destroyBody, type SimBase } from './sim-core.ts';
 
@@ -50,6 +51,18 @@ export function makeScenarioContext(core: SimBase): ScenarioContext {
     },
     inputs() {
       return core.tickInputs;
+    },
+    gameInput(playerId: number): GameInputValues {
+      const applied = core.tickInputs.find((c) => c.playerId === playerId)?.input ?? core.players.get(playerId)?.input;
+      if (applied === undefined) throw new Error(`ctx.gameInput: player ${String(playerId)} is not in the game`);
+      return gameInputValues(applied.game, core.gameInputFields);
+    },
+    setState(name: string, value: number | string): void {
+      if (core.phase !== 'building' && core.phase !== 'tick') throw new Error('ctx.setState: only while building or inside a tick hook');
+      core.gameState.set(name, value);
+    },
+    getState(name: string): number | string {
+      return core.gameState.get(name);
     },
   };
 }

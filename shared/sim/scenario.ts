@@ -2,6 +2,9 @@
 // points, render hints). Scenarios live in scenarios/; the Simulation builds and drives them through this interface.
 import { describeValue } from './describe-value.ts';
 import type { BodyHandle, BodyOptions, PhysicsWorldOptions, QuatLike, ShapeSpec, Vec3Like } from '../physics/index.ts';
+import type { GameInputFieldSpec, GameInputValues } from './game-input.ts';
+import type { GameMessageEvent, GameMessageSpec } from './game-messages.ts';
+import type { GameStateFieldSpec } from './game-state.ts';
 import type { Prng } from './prng.ts';
 import type { CharacterState, PlayerCommand, SimEvent } from './types.ts';
 
@@ -63,6 +66,12 @@ export interface ScenarioContext {
   characters(): readonly CharacterState[];
   /** The commands applied this tick, sorted by player id (e.g. a player-driven body reads them). */
   inputs(): readonly PlayerCommand[];
+  /** A present player's game-defined input values this tick, by field name (ScenarioDefinition.input). */
+  gameInput(playerId: number): GameInputValues;
+  /** Publishes a game state value (ScenarioDefinition.state): hashed, checkpointed and sent to clients when it changes. */
+  setState(name: string, value: number | string): void;
+  /** A game state value as last set (or its declared initial value). */
+  getState(name: string): number | string;
 }
 
 /** The live side of a scenario, returned by build(). Keep body ids, not handles, across ticks. */
@@ -71,6 +80,8 @@ export interface ScenarioInstance {
   spawnPoint(playerIndex: number): Vec3Like;
   /** Runs after the physics step of every tick (spawners, moving platforms, streaming). */
   onTick?(ctx: ScenarioContext): void;
+  /** Runs for each game message of the tick, in record order, after joins and before commands (pick a team, …). */
+  onMessage?(ctx: ScenarioContext, msg: GameMessageEvent): void;
   /** Sees the tick's sorted sensor events after onTick (doors, targets). */
   onEvents?(ctx: ScenarioContext, events: readonly SimEvent[]): void;
   /** Scenario-side state as plain JSON data, for checkpoints and the state hash. */
@@ -89,6 +100,22 @@ export interface ScenarioDefinition {
   /** The scripted golden run: how many ticks, how many scripted bots. */
   golden: { ticks: number; bots: number };
   players?: PlayerRules;
+  /**
+   * Game-defined input fields players send beside the built-in command, by name: `{kind: 'button'}` (0 or 1) or
+   * `{kind: 'axis', min, max}` (integers). At most 16; the SDK sends them by name (`setInput({...cmd, kick: 1})`).
+   */
+  input?: Readonly<Record<string, GameInputFieldSpec>>;
+  /**
+   * Replicated game state by name: `{kind: 'number', initial?}` or `{kind: 'string', maxLength? (≤ 64, default 32),
+   * initial?}`. At most 32 fields. The scenario sets values with ctx.setState; clients get them with snapshots.
+   */
+  state?: Readonly<Record<string, GameStateFieldSpec>>;
+  /**
+   * Game messages players may send by name, each with a payload of named integer fields:
+   * `{pickTeam: {payload: {team: {min: 0, max: 1}}}}`. At most 32 kinds of at most 8 fields. They reach
+   * ScenarioInstance.onMessage on the tick the server stamps them with, and the input log records them.
+   */
+  messages?: Readonly<Record<string, GameMessageSpec>>;
   /** World limits (maxBodies, …) this scene needs. */
   world?: Omit<PhysicsWorldOptions, 'wasmBinary' | 'wasmUrl'>;
   /** Builds the static scene and returns the live instance. */

@@ -4,6 +4,9 @@ import { IDENTITY_QUAT, type PhysicsWorld, type QuatLike, type SensorEvent, type
 import type { BodyKind, BodyRecord, BodyRegistry } from './body-registry.ts';
 import { makeRecord } from './body-registry.ts';
 import type { BulletList } from './bullets.ts';
+import type { GameInputField } from './game-input.ts';
+import type { GameMessageKind } from './game-messages.ts';
+import type { GameStateStore } from './game-state.ts';
 import type { PlayerTable, ResolvedPlayerRules } from './players.ts';
 import type { Prng } from './prng.ts';
 import type { ParamValues, ScenarioContext, ScenarioDefinition, ScenarioInstance, SpawnOptions } from './scenario.ts';
@@ -23,6 +26,12 @@ export interface SimBase {
   readonly world: PhysicsWorld;
   readonly rng: Prng;
   readonly rules: ResolvedPlayerRules;
+  /** The scenario's game input fields, sorted by name (empty when it declares none). */
+  readonly gameInputFields: readonly GameInputField[];
+  /** The scenario's game message kinds, sorted by name. */
+  readonly gameMessageKinds: readonly GameMessageKind[];
+  /** The scenario's replicated game state. */
+  readonly gameState: GameStateStore;
   readonly registry: BodyRegistry;
   readonly players: PlayerTable;
   readonly bullets: BulletList;

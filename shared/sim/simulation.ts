@@ -6,6 +6,9 @@ import { BodyRegistry } from './body-registry.ts';
 import { BulletList } from './bullets.ts';
 import { captureData, restoreCheckpoint, saveCheckpoint, type Checkpoint } from './checkpoint.ts';
 import { decodeCheckpoint, encodeCheckpoint } from './checkpoint-codec.ts';
+import { resolveGameInputFields, type GameInputField } from './game-input.ts';
+import { resolveGameMessageKinds, type GameMessageKind } from './game-messages.ts';
+import { GameStateStore, resolveGameStateFields, type GameStateField, type GameStateValue, type GameStateValues } from './game-state.ts';
 import { PlayerTable, resolvePlayerRules } from './players.ts';
 import { Prng } from './prng.ts';
 import { makeScenarioContext } from './scenario-context.ts';
@@ -67,6 +70,9 @@ export class Simulation {
     const params: ParamValues = resolveParams(def, opts.params ?? {});
     const seed = checkSeed(opts.seed ?? 1);
     const rules = resolvePlayerRules(def.players, `scenario ${def.name}`);
+    const gameInputFields = resolveGameInputFields(def.input, def.name);
+    const gameState = new GameStateStore(resolveGameStateFields(def.state, def.name));
+    const gameMessageKinds = resolveGameMessageKinds(def.messages, def.name);
     const world = await PhysicsWorld.create({ ...(def.world ?? {}), ...(opts.worldOptions ?? {}) });
     const base: SimBase = {
       def,
@@ -75,6 +81,9 @@ export class Simulation {
       world,
       rng: new Prng(seed),
       rules,
+      gameInputFields,
+      gameState,
+      gameMessageKinds,
       registry: new BodyRegistry(),
       players: new PlayerTable(),
       bullets: new BulletList(),
@@ -129,6 +138,36 @@ export class Simulation {
   /** The seed the PRNG started from. */
   get seed(): number | string {
     return this.core.seed;
+  }
+
+  /** The scenario's game input fields, sorted by name: the order of InputCommand.game. */
+  get gameInputFields(): readonly GameInputField[] {
+    return this.core.gameInputFields;
+  }
+
+  /** The scenario's game message kinds, sorted by name (payload fields in name order). */
+  get gameMessageKinds(): readonly GameMessageKind[] {
+    return this.core.gameMessageKinds;
+  }
+
+  /** The scenario's game state fields, sorted by name. */
+  get gameStateFields(): readonly GameStateField[] {
+    return this.core.gameState.fields;
+  }
+
+  /** The game state the scenario published, by field name (a frozen copy). */
+  gameState(): GameStateValues {
+    return this.live().gameState.named();
+  }
+
+  /** The game state values in field order (a copy), for the wire. */
+  gameStateValues(): GameStateValue[] {
+    return this.live().gameState.list();
+  }
+
+  /** Changes whenever the game state does (not part of the hash): equal versions mean equal state. */
+  get gameStateVersion(): number {
+    return this.core.gameState.version;
   }
 
   /** The physics world (read-only use: queries, body handles). Changing it directly breaks determinism. */

@@ -40,6 +40,8 @@ export interface StateDump {
   players: PlayerDump[];
   bullets: Bullet[];
   scenarioState: number[];
+  /** Game state values in field order (empty when the scenario declares none). */
+  gameState: (number | string)[];
   /** Sensor transitions carried into the next tick, as (kind 0 exit / 1 enter, sensor id, other id) triples. */
   carriedSensor: number[];
   /** Open sensor overlaps as (sensor id, other id, count) triples. */
@@ -82,6 +84,7 @@ export function dumpState(core: SimCore, copy = true, bodies?: BodyStates): Stat
     }),
     bullets: core.bullets.snapshot(),
     scenarioState: core.instance.saveState ? core.instance.saveState().slice() : [],
+    gameState: core.gameState.list(),
     carriedSensor: core.carriedSensor.flatMap((e) => [e.kind === 'enter' ? 1 : 0, e.sensorId, e.otherId]),
     overlaps,
   };
@@ -91,6 +94,11 @@ function hashPlayer(h: Hasher64, p: PlayerDump): void {
   h.word(p.playerId).word(p.joinIndex).word(p.bodyId).string(p.name);
   const i = p.input;
   h.word(i.moveX).word(i.moveZ).word(i.yaw).word(i.pitch).word(i.buttons).word(p.nextFireTick);
+  // Game input only where a scenario declares it, so scenarios without it hash exactly as before.
+  if (i.game !== undefined && i.game.length > 0) {
+    h.word(i.game.length);
+    for (const v of i.game) h.word(v);
+  }
   h.f32Bits(p.position[0]).f32Bits(p.position[1]).f32Bits(p.position[2]);
   h.f64Bits(p.velocity[0]).f64Bits(p.velocity[1]).f64Bits(p.velocity[2]);
   h.word(p.groundState).f64Bits(p.pendingJumpSpeed);
@@ -113,6 +121,14 @@ export function hashDump(d: StateDump): string {
   h.word(d.scenarioState.length);
   const scenario = Float64Array.from(d.scenarioState); // each value as two words, low then high (little-endian)
   h.words(new Uint32Array(scenario.buffer));
+  // Game state only where a scenario declares it, so scenarios without it hash exactly as before.
+  if (d.gameState.length > 0) {
+    h.word(d.gameState.length);
+    for (const v of d.gameState) {
+      if (typeof v === 'number') h.word(0).f64Bits(v);
+      else h.word(1).string(v);
+    }
+  }
   h.word(d.carriedSensor.length);
   for (const v of d.carriedSensor) h.word(v);
   h.word(d.overlaps.length);
@@ -177,6 +193,9 @@ export function firstDivergence(a: StateDump, b: StateDump): Divergence | null {
   }
   if (JSON.stringify(a.bullets) !== JSON.stringify(b.bullets)) return { part: 'bullets', detail: 'bullet lists differ' };
   if (!sameNumbers(a.scenarioState, b.scenarioState)) return { part: 'scenario', detail: 'scenario state differs' };
+  const ga = a.gameState ?? [];
+  const gb = b.gameState ?? [];
+  if (ga.length !== gb.length || ga.some((v, i) => !Object.is(v, gb[i]))) return { part: 'scenario', detail: 'game state differs' };
   if (!sameNumbers(a.carriedSensor, b.carriedSensor) || !sameNumbers(a.overlaps, b.overlaps)) return { part: 'sensors', detail: 'sensor overlaps differ' };
   return null;
 }

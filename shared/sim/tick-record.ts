@@ -1,6 +1,9 @@
 // Validation of one tick's input record before anything of it is applied: the tick number, sorted unique player
-// ids, leaves of present players, joins of absent ones, and every command re-checked by validateInputCommand.
+// ids, leaves of present players, joins of absent ones, and every command re-checked by validateInputCommand and
+// fitted to the scenario's game input fields, and game messages of players in the game, checked against their kinds.
 import { describeValue } from './describe-value.ts';
+import { fitGameInput, type GameInputField } from './game-input.ts';
+import { checkGameMessage, checkGameMessageShape, MAX_GAME_MESSAGES_PER_PLAYER_TICK, type GameMessage, type GameMessageKind } from './game-messages.ts';
 import { validateInputCommand, type InputCommand } from './input.ts';
 import type { PlayerCommand, PlayerJoin, TickInputRecord } from './types.ts';
 
@@ -46,7 +49,13 @@ function array(value: unknown, where: string): unknown[] {
  * Checks a record for tick `expectedTick` against the players present before it; returns a clean copy or throws a
  * clear Error (nothing is applied). Commands must already be exact validated InputCommands, as the log stores them.
  */
-export function validateTickRecord(raw: unknown, expectedTick: number, isPresent: (playerId: number) => boolean): TickInputRecord {
+export function validateTickRecord(
+  raw: unknown,
+  expectedTick: number,
+  isPresent: (playerId: number) => boolean,
+  gameFields: readonly GameInputField[] = [],
+  kinds: readonly GameMessageKind[] = [],
+): TickInputRecord {
   if (raw === null || typeof raw !== 'object' || Array.isArray(raw)) throw new Error('step: the tick input record must be an object');
   const rec = raw as Record<string, unknown>;
   if (rec.tick !== expectedTick) {
@@ -84,9 +93,36 @@ export function validateTickRecord(raw: unknown, expectedTick: number, isPresent
     const v = validateInputCommand(cr.input);
     if (!v.ok) throw new Error(`${where}: command of player ${id} is invalid: ${v.error}`);
     if (v.clamped) throw new Error(`${where}: command of player ${id} is out of range; pass raw input through validateInputCommand first`);
-    const input: InputCommand = v.command;
+    const fit = fitGameInput(v.command, gameFields);
+    if (!fit.ok) throw new Error(`${where}: command of player ${id} is invalid: ${fit.error}`);
+    if (fit.clamped) throw new Error(`${where}: command of player ${id} has game input outside the declared ranges`);
+    const input: InputCommand = fit.command;
     commands.push({ playerId: id, input });
   }
   ascending(commands.map((c) => c.playerId), `${where} commands`);
-  return { tick: expectedTick, leaves, joins, commands };
+  const messages = validateMessages(rec.messages, where, (id) => present(id) || joining.has(id), kinds);
+  return messages.length > 0 ? { tick: expectedTick, leaves, joins, commands, messages } : { tick: expectedTick, leaves, joins, commands };
+}
+
+function validateMessages(raw: unknown, where: string, inGame: (playerId: number) => boolean, kinds: readonly GameMessageKind[]): GameMessage[] {
+  if (raw === undefined) return [];
+  const out: GameMessage[] = [];
+  let prev = -1;
+  let run = 0;
+  for (const m of array(raw, `${where}: messages`)) {
+    if (m === null || typeof m !== 'object') throw new Error(`${where}: each message must be an object {playerId, name, payload}`);
+    const mr = m as Record<string, unknown>;
+    const id = playerId(mr.playerId, `${where} message`);
+    if (!inGame(id)) throw new Error(`${where}: message from player ${id}, who is not in the game`);
+    if (id < prev) throw new Error(`${where}: messages must be sorted by player id (${prev} before ${id})`);
+    run = id === prev ? run + 1 : 1;
+    if (run > MAX_GAME_MESSAGES_PER_PLAYER_TICK) throw new Error(`${where}: player ${id} has more than ${MAX_GAME_MESSAGES_PER_PLAYER_TICK} messages`);
+    prev = id;
+    const shape = checkGameMessageShape(mr.name, mr.payload);
+    if (!shape.ok) throw new Error(`${where}: message of player ${id}: ${shape.error}`);
+    const error = checkGameMessage(shape.name, shape.payload, kinds);
+    if (error !== null) throw new Error(`${where}: message of player ${id}: ${error}`);
+    out.push({ playerId: id, name: shape.name, payload: shape.payload });
+  }
+  return out;
 }

@@ -1,10 +1,11 @@
-// One 60 Hz tick, in the documented order (docs/simulation.md): leaves → joins → commands (walk, jump, fire) →
+// One 60 Hz tick, in the documented order (docs/simulation.md): leaves → joins → game messages (onMessage) → commands (walk, jump, fire) →
 // characters move → physics step → scenario onTick → bullet expiry and bounds → sensor events → onEvents.
 import { IDENTITY_QUAT, type Vec3Like } from '../physics/index.ts';
 import { worldInternals } from '../physics/internal.ts';
 import { TICK_DT_SECONDS } from '../tick-rate.ts';
 import { makeRecord, playerColor } from './body-registry.ts';
 import { BULLET_SHAPE, bulletOptions, muzzlePosition } from './bullets.ts';
+import { gameMessageEvent } from './game-messages.ts';
 import { applyCommand, CHARACTER_SHAPE, createCharacter, newPlayer, type Player } from './players.ts';
 import { assertRegistryInSync, createBody, destroyBody, sensorSimEvents, type SimCore } from './sim-core.ts';
 import { validateTickRecord } from './tick-record.ts';
@@ -24,6 +25,7 @@ function join(core: SimCore, j: PlayerJoin, tick: number): void {
   const controller = createCharacter(core.world, j.playerId, joinIndex, feet);
   core.players.joinCount++;
   const player = newPlayer(j.playerId, j.name, joinIndex, controller);
+  if (core.gameInputFields.length > 0) player.input = { ...player.input, game: core.gameInputFields.map(() => 0) };
   core.players.add(player);
   core.registry.add(makeRecord('character', controller.body!, CHARACTER_SHAPE, feet, IDENTITY_QUAT, { name: j.name }, { playerId: j.playerId, color: playerColor(joinIndex) }));
   core.tickEvents.push({ type: 'playerJoined', tick, playerId: j.playerId, name: j.name, bodyId: player.bodyId });
@@ -85,7 +87,7 @@ function hook(core: SimCore, name: string, run: () => void): void {
 /** Runs one tick for `raw` (validated first: a bad record throws and changes nothing). Returns the tick's events. */
 export function runTick(core: SimCore, raw: unknown): SimEvent[] {
   if (core.failure) throw new Error(`the simulation failed at tick ${core.tick} and must be restored from a checkpoint: ${core.failure.message}`);
-  const rec: TickInputRecord = validateTickRecord(raw, core.tick, (id) => core.players.has(id));
+  const rec: TickInputRecord = validateTickRecord(raw, core.tick, (id) => core.players.has(id), core.gameInputFields, core.gameMessageKinds);
   const tick = core.tick;
   core.currentTick = tick;
   core.tickEvents = [];
@@ -94,6 +96,9 @@ export function runTick(core: SimCore, raw: unknown): SimEvent[] {
   try {
     for (const id of rec.leaves) leave(core, id, tick);
     for (const j of rec.joins) join(core, j, tick);
+    if (rec.messages && core.instance.onMessage) {
+      for (const m of rec.messages) hook(core, 'onMessage', () => core.instance.onMessage!(core.ctx, gameMessageEvent(m, core.gameMessageKinds)));
+    }
     const given = new Map(rec.commands.map((c) => [c.playerId, c.input]));
     const applied: PlayerCommand[] = [];
     for (const p of core.players.inOrder()) {

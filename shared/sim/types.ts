@@ -2,6 +2,7 @@
 // character state other layers (hash, snapshots, render) read. Plain data only: no Jolt, no classes.
 import type { ShapeSpec } from '../physics-data/shape-spec.ts';
 import type { Vec3Like } from '../physics-data/vectors.ts';
+import type { GameMessage } from './game-messages.ts';
 import type { InputCommand } from './input.ts';
 
 /** A player entering on this tick. Player ids are chosen by the host (server or recorder), unique per session. */
@@ -17,14 +18,17 @@ export interface PlayerCommand {
 }
 
 /**
- * Everything that enters the simulation on one tick, in application order: leaves, then joins, then commands.
- * This is exactly what the input log stores per tick. Arrays are sorted by playerId.
+ * Everything that enters the simulation on one tick, in application order: leaves, then joins, then game messages,
+ * then commands. This is exactly what the input log stores per tick. Arrays are sorted by playerId (messages keep
+ * their arrival order within one player).
  */
 export interface TickInputRecord {
   tick: number;
   leaves: number[];
   joins: PlayerJoin[];
   commands: PlayerCommand[];
+  /** Game messages stamped for this tick (ScenarioDefinition.messages); absent or empty when there are none. */
+  messages?: GameMessage[];
 }
 
 /** An empty record for a tick. */

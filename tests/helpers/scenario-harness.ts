@@ -5,6 +5,8 @@ import '../../server/physics-node.ts';
 import { CharacterController, CollisionLayer, PhysicsWorld, type BodyHandle, type QuatLike, type ShapeSpec, type Vec3Like } from '../../shared/physics/index.ts';
 import { walkVelocity } from '../../shared/sim/controls.ts';
 import { Button, NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input.ts';
+import { gameInputValues, resolveGameInputFields } from '../../shared/sim/game-input.ts';
+import { GameStateStore, resolveGameStateFields } from '../../shared/sim/game-state.ts';
 import { Prng } from '../../shared/sim/prng.ts';
 import { resolveParams, type ParamValues, type ScenarioContext, type ScenarioDefinition, type ScenarioInstance, type SpawnOptions } from '../../shared/sim/scenario.ts';
 import type { CharacterState, PlayerCommand, SimEvent } from '../../shared/sim/types.ts';
@@ -42,12 +44,15 @@ export class ScenarioHarness {
   private tickInputs: PlayerCommand[] = [];
   private building = true;
   readonly ctx: ScenarioContext;
+  /** The game state the scenario publishes. */
+  readonly gameState: GameStateStore;
 
   private constructor(def: ScenarioDefinition, world: PhysicsWorld, rng: Prng, params: ParamValues) {
     this.def = def;
     this.world = world;
     this.rng = rng;
     this.params = params;
+    this.gameState = new GameStateStore(resolveGameStateFields(def.state, def.name));
     const self = this;
     this.ctx = {
       world,
@@ -64,6 +69,13 @@ export class ScenarioHarness {
       },
       characters: () => this.characters(),
       inputs: () => this.tickInputs,
+      setState: (name, value) => this.gameState.set(name, value),
+      getState: (name) => this.gameState.get(name),
+      gameInput: (playerId) => {
+        const cmd = this.tickInputs.find((c) => c.playerId === playerId);
+        if (!cmd) throw new Error(`gameInput: player ${playerId} has no command this tick`);
+        return gameInputValues(cmd.input.game, resolveGameInputFields(def.input, def.name));
+      },
     };
   }
 

@@ -49,7 +49,7 @@ describe('the packed package', () => {
     expect(JSON.parse(b.stdout).hash).toBe(JSON.parse(a.stdout).hash);
   }, 60_000);
 
-  it('serves the scenario and its page, two clients play it, and the recording replays', async () => {
+  it('serves the scenario and its page, two clients play it, and the recording replays and verifies', async () => {
     const server = await serveIn(pkg.app, ['--scenario', './game.ts', '--record', 'rec']);
     let code: number | null;
     try {
@@ -71,6 +71,9 @@ describe('the packed package', () => {
     expect(replay.code, replay.stderr).toBe(0);
     expect(JSON.parse(replay.stdout)).toMatchObject({ status: 'ok', scenario: 'crate-drop' });
     expect(JSON.parse(replay.stdout).ticks).toBeGreaterThan(0);
+    const verify = await cliIn(pkg.app, ['verify', join('rec', log), '--scenario', './game.ts', '--runs', '2', '--json']);
+    expect(verify.code, verify.stderr).toBe(0);
+    expect(JSON.parse(verify.stdout)).toMatchObject({ agree: true, matchesLog: true });
   }, 90_000);
 
   it('exports the server, client, physics and sim entries with types, and nothing else', async () => {

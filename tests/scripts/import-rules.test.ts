@@ -56,6 +56,18 @@ describe('checkImports', () => {
     ]);
   });
 
+  it('lets examples import only the package\'s entry points and each other', () => {
+    expect(
+      problems([
+        file('examples/g/game.ts', "import { defineScenario } from '../../api/index.ts';", "import { Room } from '../../server/room.ts';", "import { x } from './rules.ts';"),
+        file('examples/g/rules.ts', "import { connect } from '../../api/client.ts';", "import { Simulation } from '../../shared/sim/simulation.ts';"),
+      ]),
+    ).toEqual([
+      'examples/g/game.ts:3: examples/ may not import server/ (server/room.ts); examples/ may import: examples, api, api/client, api/physics',
+      'examples/g/rules.ts:3: examples/ may not import shared/sim/ (shared/sim/simulation.ts); examples/ may import: examples, api, api/client, api/physics',
+    ]);
+  });
+
   it('lets other areas into the physics wrapper only through index.ts, and only shared/sim through internal.ts', () => {
     expect(
       problems([

@@ -32,4 +32,12 @@ describe('net-mode-policy', () => {
     expect(isNetModeRequest('auto')).toBe(true);
     expect(isNetModeRequest('lockstep')).toBe(false);
   });
+
+  it('serves snapshots to a scenario that uses the game API, even when predict is asked for, and says why', () => {
+    for (const request of ['auto', 'predict'] as const) {
+      const d = decideNetMode(request, 'cubes-901', {}, true);
+      expect(d.mode).toBe('snapshot');
+      expect(d.note).toMatch(/uses the game API \(game input, state or messages\), which predict mode does not carry/);
+    }
+  });
 });

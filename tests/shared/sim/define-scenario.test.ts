@@ -48,4 +48,10 @@ describe('defineScenario', () => {
     expect(() => defineScenario({ ...base, players: { walkSpeedMetresPerSecond: -1 } })).toThrow(/players.walkSpeedMetresPerSecond/);
     expect(() => defineScenario(null as never)).toThrow(/expects an object/);
   });
+
+  it('rejects bad game input, state and message declarations up front, naming the field', () => {
+    expect(() => defineScenario({ ...base, input: { yaw: { kind: 'button' } } })).toThrow(/defineScenario\(.*\): scenario .*: input field "yaw": the name is taken/);
+    expect(() => defineScenario({ ...base, state: { score: { kind: 'text' as never } } })).toThrow(/state field "score": kind must be 'number' or 'string'/);
+    expect(() => defineScenario({ ...base, messages: { pick: { payload: { team: { min: 1, max: 0 } } } } })).toThrow(/message "pick": payload field team needs integer min ≤ max/);
+  });
 });

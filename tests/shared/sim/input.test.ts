@@ -9,7 +9,7 @@ import { hostileValue } from '../../helpers/hostile-values.ts';
 
 /** Why a command is not canonical, or null when it is. */
 function notCanonical(c: InputCommand): string | null {
-  const ranges: Array<[keyof InputCommand, number, number]> = [
+  const ranges: Array<[Exclude<keyof InputCommand, 'game'>, number, number]> = [
     ['moveX', -MOVE_STEPS, MOVE_STEPS],
     ['moveZ', -MOVE_STEPS, MOVE_STEPS],
     ['yaw', 0, YAW_STEPS - 1],
