@@ -88,13 +88,21 @@ export function portFromEnv(env: string | undefined): number {
 }
 
 /** --durability, --durability-interval-ms and --checkpoint-every, checked. */
-function recordingOptions(args: ParsedArgs): Pick<ServeOptions, 'durability' | 'checkpointEverySeconds'> {
+function recordingOptions(args: ParsedArgs): Pick<ServeOptions, 'durability' | 'checkpointEverySeconds' | 'resumeDir' | 'recordDir' | 'recordHashEveryTicks'> {
+  const record = args.string('record');
+  if (record === '') throw new UsageError('--record must name a directory');
+  const resume = args.string('resume');
+  if (resume === '') throw new UsageError('--resume must name a directory');
   const mode = args.string('durability') ?? DEFAULT_DURABILITY;
   if (!(DURABILITY_MODES as readonly string[]).includes(mode)) throw new UsageError(`--durability must be one of ${DURABILITY_MODES.join(', ')}, got "${mode}"`);
   if (args.has('durability-interval-ms') && mode !== 'interval') throw new UsageError('--durability-interval-ms goes with --durability interval');
   return {
     durability: { mode: mode as DurabilityMode, intervalMs: args.number('durability-interval-ms', DEFAULT_DURABILITY_INTERVAL_MS) },
     checkpointEverySeconds: args.number('checkpoint-every', DEFAULT_CHECKPOINT_EVERY_SECONDS),
+    // Resumed rooms go on in their own logs; new rooms are recorded beside them unless --record says elsewhere.
+    recordDir: record ?? resume ?? null,
+    resumeDir: resume ?? null,
+    recordHashEveryTicks: args.number('hash-every'),
   };
 }
 
@@ -108,8 +116,6 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
   checkParams(def, params);
   const pageDir = args.string('page');
   if (pageDir !== undefined && !statSync(pageDir, { throwIfNoEntry: false })?.isDirectory()) throw new UsageError(`--page ${pageDir} is not a folder`);
-  const record = args.string('record');
-  if (record === '') throw new UsageError('--record must name a directory');
   const logLevel = args.string('log-level');
   if (logLevel !== undefined && !LOG_LEVELS.includes(logLevel)) throw new UsageError(`--log-level must be one of ${LOG_LEVELS.join(', ')}, got "${logLevel}"`);
   const logFormat = args.string('log-format');
@@ -129,7 +135,6 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
       seed: parseSeed(args.string('seed')),
       snapshotRateHz: args.number('snapshot-rate', 30),
       netMode: netModeFlag(args.string('net-mode')),
-      recordDir: record ?? null,
       maxClients: args.number('max-clients', 32),
       maxRooms: args.number('max-rooms'),
       roomWorkers: args.number('room-workers', availableParallelism()),
@@ -162,11 +167,15 @@ export const serveCommand: CommandSpec = {
     'With --record DIR every room writes its input log there (replay it with `replay FILE`, or in the browser at\n' +
     '/replay, where --replay FILE serves one), with a checkpoint every\n' +
     `--checkpoint-every seconds. --durability (default ${DEFAULT_DURABILITY}): "tick" writes and fdatasyncs each tick's record (group\n` +
-    'commit) before its snapshot, events or input acks leave, so a crash loses nothing any client saw, for a fraction\n' +
-    'of a millisecond per tick (docs/server.md); "interval" syncs every --durability-interval-ms and holds nothing\n' +
-    'back (a crash loses at most that much); "off" hands records to the OS every second. Logs go to stderr:\n' +
+    'commit) before its snapshot, events or input acks leave, so a crash loses nothing any client saw, for the\n' +
+    "disk's sync latency added to each tick's delivery (docs/server.md); \"interval\" syncs every\n" +
+    '--durability-interval-ms and holds nothing back (a crash loses at most that much); "off" hands records to the OS\n' +
+    'every second.\n' +
+    'With --resume DIR every unterminated log in DIR is checked (CRC, hashes), re-simulated from its last checkpoint\n' +
+    'and its room reopened under the same id at its last durable tick, appending to the same log; its players get\n' +
+    '--resume-grace to come back. A log that fails a check is named with the record and left alone. Logs go to stderr:\n' +
     'readable lines on a terminal, JSON lines when piped (or with --log-format json). SIGINT/SIGTERM: clients are\n' +
-    'told why, recordings are closed, then the process exits.\n' +
+    'told why, recordings get a last checkpoint and their end record, then the process exits.\n' +
     `Access control (docs/server.md): pages from other origins are refused; ${ADMIN_TOKEN_ENV} and ${JOIN_SECRET_ENV} may\n` +
     'replace --admin-token and --join-secret (the flag wins).',
   positionals: [],
@@ -181,6 +190,8 @@ export const serveCommand: CommandSpec = {
     { name: 'record', kind: 'string', valueName: 'DIR', description: "write every room's input log into DIR" },
     { name: 'durability', kind: 'string', valueName: 'MODE', description: `when recorded ticks reach the disk: tick, interval or off; default ${DEFAULT_DURABILITY}` },
     { name: 'durability-interval-ms', kind: 'int', valueName: 'MS', description: `sync period of --durability interval; default ${DEFAULT_DURABILITY_INTERVAL_MS}`, min: 1, max: 60_000 },
+    { name: 'hash-every', kind: 'int', valueName: 'N', description: 'a state hash in recordings every N ticks; default 60', min: 1, max: 3600 },
+    { name: 'resume', kind: 'string', valueName: 'DIR', description: 'first reopen the room of every interrupted recording in DIR at its last durable tick (implies --record DIR)' },
     { name: 'checkpoint-every', kind: 'int', valueName: 'SECONDS', description: `a checkpoint in recordings every SECONDS of play (0: none); default ${DEFAULT_CHECKPOINT_EVERY_SECONDS}`, min: 0, max: 86_400 },
     { name: 'max-clients', kind: 'int', valueName: 'N', description: 'most clients per room; default 32', min: 1, max: 1000 },
     { name: 'max-rooms', kind: 'int', valueName: 'N', description: 'most rooms at once (each is a Jolt world in the 128 MB heap); default 6', min: 1, max: 32 },

@@ -33,6 +33,12 @@ export async function runServe(opts: ServeOptions, io: CliIo): Promise<number> {
   const room = server.game.rooms.get('default');
   const what = room ? `${room.scenarioName}` : 'no default room';
   const removeLastResort = installLastResort({ logger, metrics: server.game.metrics });
+  if (server.resumed) {
+    for (const r of server.resumed.rooms) {
+      if (server.game.rooms.get(r.id)) io.stdout(`resumed room ${r.id} at tick ${r.tick} (hash ${r.hash}, ${r.players.length} player(s) held) from ${r.path}\n`);
+    }
+    for (const r of server.resumed.refused) io.stderr(`not resumed: ${r.path}: ${r.reason}\n`);
+  }
   io.stdout(`taos-physics serving ${what} at ${server.url} (WebSocket ${server.wsUrl}); Ctrl+C stops\n`);
   if (opts.replayFile) io.stdout(`replay viewer for ${opts.replayFile}: ${new URL('/replay', server.url).href}\n`);
   return new Promise<number>((resolve) => {

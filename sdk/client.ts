@@ -89,8 +89,11 @@ export interface NetClientEvents {
   protocolError: string;
   /** The room is hosted by another server: the client connects to `url` now (WebSocket URL). */
   moved: { url: string; message: string };
-  /** The link dropped and another attempt is scheduled. */
-  reconnecting: { attempt: number; delayMs: number; reason: string };
+  /**
+   * The link dropped and another attempt is scheduled. `serverRestarting`: an attempt found nothing listening after
+   * the link had worked, so the server process itself went away (a crash and restart: `serve --resume` keeps players).
+   */
+  reconnecting: { attempt: number; delayMs: number; reason: string; serverRestarting: boolean };
   /** The client stopped for good. */
   closed: ClosedInfo;
 }
@@ -111,6 +114,8 @@ export interface NetClientStats {
   newestInputTick: number;
   /** Ticks the server repeated our previous input because the new one was late (from the last pong). */
   missedInputTicks: number | null;
+  /** The room's ticks per second over the last second and whether it runs slowed (from the last pong). */
+  roomPace: { ticksPerSecond: number; slow: boolean } | null;
   kbpsIn: number;
   bytesIn: number;
   bytesOut: number;
@@ -185,6 +190,8 @@ export class NetClient {
   private attempts = 0;
   private reconnectCount = 0;
   private retryTimer: TimerHandle | null = null;
+  /** Since the last welcome: the server went away (nothing listening on a retry). */
+  private serverRestarting = false;
   private closedInfo: ClosedInfo | null = null;
   private resumeTokenValue: string | null;
   private waiters: Array<{ resolve: (w: WelcomeMessage) => void; reject: (e: Error) => void }> = [];
@@ -334,6 +341,7 @@ export class NetClient {
       leadTicks: s?.leadTicks ?? null,
       newestInputTick: s?.newestInputTick ?? -1,
       missedInputTicks: s?.serverMissedInputTicks ?? null,
+      roomPace: s?.serverRoomPace ?? null,
       kbpsIn: this.session?.kbpsIn(nowMs) ?? 0,
       bytesIn: this.session?.counters.bytesIn ?? 0,
       bytesOut: this.session?.counters.bytesOut ?? 0,
@@ -407,6 +415,7 @@ export class NetClient {
     this.session?.setInput(this.input);
     if (fitted.unknown.length > 0) this.emitter.emit('protocolError', `setInput: the scenario declares no game input ${fitted.unknown.join(', ')}; dropped`);
     this.welcomeMsg = w;
+    this.serverRestarting = false;
     this.resumeTokenValue = w.resumeToken;
     this.attempts = 0;
     this.moves = 0;
@@ -468,8 +477,9 @@ export class NetClient {
     }
     this.attempts++;
     const delayMs = backoffDelayMs(this.policy, this.attempts, this.random);
+    if (!info.opened && this.welcomeMsg !== null) this.serverRestarting = true;
     this.setState('reconnecting');
-    this.emitter.emit('reconnecting', { attempt: this.attempts, delayMs, reason: why });
+    this.emitter.emit('reconnecting', { attempt: this.attempts, delayMs, reason: why, serverRestarting: this.serverRestarting });
     this.retryTimer = this.clock.setTimer(delayMs, () => {
       this.retryTimer = null;
       if (this.stateValue !== 'reconnecting') return;

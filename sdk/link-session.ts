@@ -60,6 +60,8 @@ export interface LinkClosedInfo {
   errorBeforeWelcome: ErrorMessage | null;
   /** Closed by the client itself. */
   byClient: boolean;
+  /** Whether the connection ever opened (false: nothing answered, e.g. the server is down or restarting). */
+  opened: boolean;
 }
 
 /** Settings a LinkSession needs. */
@@ -112,9 +114,11 @@ export class LinkSession {
   private readonly sender: InputSender;
   private lead: InputLead | null = null;
   private missedInputTicks: number | null = null;
+  private roomPace: { ticksPerSecond: number; slow: boolean } | null = null;
   private bye: ServerByeMessage | null = null;
   private errorBeforeWelcome: ErrorMessage | null = null;
   private closing = false;
+  private opened = false;
   private ended = false;
   private pingsSent = 0;
   private newestFrame: QuantizedFrame | null = null;
@@ -129,7 +133,10 @@ export class LinkSession {
     this.sender = new InputSender({ redundancy: opts.inputRedundancy });
     this.sender.setCommand(opts.input);
     this.transport = opts.transport(opts.url, {
-      open: () => this.send({ type: 'hello', version: PROTOCOL_VERSION, name: opts.name, room: opts.room, seatToken: opts.seatToken, resumeToken: opts.resumeToken }),
+      open: () => {
+        this.opened = true;
+        this.send({ type: 'hello', version: PROTOCOL_VERSION, name: opts.name, room: opts.room, seatToken: opts.seatToken, resumeToken: opts.resumeToken });
+      },
       message: (data) => this.receive(data),
       close: (code, reason) => this.end(code, reason),
     });
@@ -158,6 +165,11 @@ export class LinkSession {
   /** The newest tick an input was generated for. */
   get newestInputTick(): number {
     return this.sender.newestTick;
+  }
+
+  /** The room's ticks per second and whether it runs slowed (last pong); null before one. */
+  get serverRoomPace(): { ticksPerSecond: number; slow: boolean } | null {
+    return this.roomPace;
   }
 
   /** Ticks the server reported it had to repeat our input (last pong). */
@@ -237,7 +249,7 @@ export class LinkSession {
     this.ended = true;
     this.clearTimers();
     this.predictSession?.dispose();
-    this.h.closed({ code, reason, welcomed: this.welcomeMsg !== null, bye: this.bye, errorBeforeWelcome: this.errorBeforeWelcome, byClient: this.closing });
+    this.h.closed({ code, reason, welcomed: this.welcomeMsg !== null, bye: this.bye, errorBeforeWelcome: this.errorBeforeWelcome, byClient: this.closing, opened: this.opened });
   }
 
   private receive(data: Uint8Array): void {
@@ -268,6 +280,7 @@ export class LinkSession {
         this.counters.pongs++;
         this.sync.addSample({ sentLocalMs: m.clientTimeMs, receivedLocalMs: now, serverTick: m.serverTick, serverTimeMs: m.serverTimeMs });
         this.missedInputTicks = m.missedInputTicks;
+        this.roomPace = { ticksPerSecond: m.roomTicksPerSecond, slow: m.roomSlow };
         return;
       case 'snapshot':
         this.onSnapshot(m.bytes, m.descriptors, sizeBytes, now);

@@ -239,12 +239,15 @@ export class ClientSession implements MemberSink, ResumeHolder {
         return;
       case 'ping': {
         const seat = this.room ? this.seat : null;
+        const pace = seat ? seat.pace() : null;
         this.send({
           type: 'pong',
           clientTimeMs: msg.clientTimeMs,
           serverTick: seat ? seat.serverTick() : 0,
           serverTimeMs: this.ctx.clock.nowMs(),
           missedInputTicks: seat ? seat.missedInputTicks() : 0,
+          roomTicksPerSecond: pace ? Math.round(pace.ticksPerSecond) : 0,
+          roomSlow: pace ? pace.slow : false,
         });
         return;
       }

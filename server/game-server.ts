@@ -6,6 +6,7 @@ import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import type { SessionAccess } from './access/admission.ts';
 import { DEFAULT_RESUME_GRACE_MS, ResumeTokens } from './access/resume-tokens.ts';
 import type { SeatTokens } from './access/seat-tokens.ts';
+import { CatchUpBudget } from './catch-up-budget.ts';
 import { SystemClock } from './clock.ts';
 import { ClientSession, DEFAULT_SESSION_LIMITS, type SessionLimits } from './client-session.ts';
 import { CloseCode, type ServerConnection } from './connection.ts';
@@ -13,6 +14,7 @@ import { createLogger, type Logger } from './logger.ts';
 import { createMetrics, renderMergedMetrics, type ServerMetrics } from './metrics.ts';
 import type { NetModeRequest } from './net-mode-policy.ts';
 import type { RoomInfo } from './room.ts';
+import type { HostedRoom } from './hosted-room.ts';
 import { RoomManager, type RoomDirectory, type RoomFactory } from './room-manager.ts';
 import type { WorkerPool } from './workers/worker-pool.ts';
 
@@ -48,6 +50,10 @@ export interface GameServerOptions {
   requireSeat?: boolean;
   /** Room workers to run the rooms in (the server stops them when it closes). Default none: rooms on this thread. */
   workers?: WorkerPool | null;
+  /** Runs before the default room opens (serve --resume reopens crashed rooms here, the default one included). */
+  beforeDefaultRoom?: (server: GameServer) => Promise<void>;
+  /** Hears every resume token issued, by key (recordings keep them for --resume). */
+  onResumeTokenIssued?: (room: HostedRoom, playerId: number, key: string) => void;
   /** With a fleet (`--redis`): room ids are claimed fleet-wide here (server/fleet/). */
   directory?: RoomDirectory;
 }
@@ -83,7 +89,7 @@ export class GameServer {
     const seats = opts.seats ?? null;
     if (opts.requireSeat === true && seats === null) throw new Error('requireSeat needs seat tokens (a join secret) to check');
     this.access = {
-      resume: graceMs > 0 ? new ResumeTokens({ clock: this.clock, graceMs, logger: this.logger }) : null,
+      resume: graceMs > 0 ? new ResumeTokens({ clock: this.clock, graceMs, logger: this.logger, onIssue: opts.onResumeTokenIssued }) : null,
       seats,
       requireSeat: opts.requireSeat ?? false,
     };
@@ -104,9 +110,12 @@ export class GameServer {
       pauseWhenEmpty: opts.pauseWhenEmpty,
       netMode: opts.netMode,
       host: this.workers,
+      // Rooms on this thread share its loop: on the real clock, a late room may not run its catch-up ticks back to back.
+      catchUp: this.clock instanceof SystemClock ? new CatchUpBudget() : null,
       directory: opts.directory,
     });
     this.metrics.setRoomHeapSource(() => this.roomHeaps());
+    this.metrics.setRoomPaceSource(() => this.rooms.list().map((r) => ({ room: r.id, ticksPerSecond: r.ticksPerSecond, slow: r.slow })));
   }
 
   /** Each open room's WASM heap (rooms whose simulation does not report one are left out). */
@@ -122,6 +131,7 @@ export class GameServer {
   /** Builds the server and opens its default room (throws a clear Error for a bad scenario or parameters). */
   static async create(opts: GameServerOptions): Promise<GameServer> {
     const server = new GameServer(opts);
+    await opts.beforeDefaultRoom?.(server);
     try {
       await server.rooms.start();
     } catch (error) {

@@ -51,6 +51,8 @@ export interface Seat {
   serverTick(): number;
   /** Ticks on which this player's input had not arrived and the last one was repeated. */
   missedInputTicks(): number;
+  /** The room's ticks per second over the last second and whether it runs slowed (for the player's HUD). */
+  pace(): { ticksPerSecond: number; slow: boolean };
 }
 
 /** A room as the room manager, the sessions, the HTTP API and the resume tokens use it. */
@@ -59,6 +61,8 @@ export interface HostedRoom {
   readonly scenarioName: string;
   readonly params: Readonly<Record<string, number>>;
   readonly closed: boolean;
+  /** The input log the room records into, when its host says (a room worker's); resume keys are kept beside it. */
+  readonly recordingPath?: string | null;
   /** Players in the room, counting those held for a reconnect. */
   readonly clientCount: number;
   info(): RoomInfo;

@@ -30,5 +30,6 @@ export function enterRoom(room: Room, sink: MemberSink, entry: RoomEntry, metric
     setNetMode: (mode) => void member.setNetMode(mode),
     serverTick: () => room.sim.tick,
     missedInputTicks: () => room.missedInputTicks(playerId),
+    pace: () => room.pace(),
   };
 }

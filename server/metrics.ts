@@ -56,6 +56,19 @@ export interface ServerMetrics {
   readonly wasmHeap: Gauge<string>;
   /** Sets where wasmHeap reads the open rooms from (the server does it once its rooms exist). */
   setRoomHeapSource(source: () => Iterable<RoomHeapUsage>): void;
+  /** Each open room's ticks per second over the last second (label room), read at scrape time. */
+  readonly roomTickRate: Gauge<string>;
+  /** 1 while a room cannot keep the tick rate and runs slowed, else 0 (label room). */
+  readonly roomSlow: Gauge<string>;
+  /** Sets where roomTickRate and roomSlow read the open rooms from. */
+  setRoomPaceSource(source: () => Iterable<RoomPaceReading>): void;
+}
+
+/** One room's pace for the roomTickRate and roomSlow gauges. */
+export interface RoomPaceReading {
+  room: string;
+  ticksPerSecond: number;
+  slow: boolean;
 }
 
 /** One room's heap for the wasmHeap gauge. */
@@ -89,11 +102,37 @@ export function createMetrics(opts: { processMetrics?: boolean; prefix?: string 
       }
     },
   });
+  let paceSource: () => Iterable<RoomPaceReading> = () => [];
+  const roomTickRate = new Gauge({
+    name: `${p}room_ticks_per_second`,
+    help: 'Ticks each open room ran per second over the last second (60 when it keeps up; 0 while paused)',
+    labelNames: ['room'],
+    registers,
+    collect() {
+      this.reset();
+      for (const r of paceSource()) this.set({ room: r.room }, r.ticksPerSecond);
+    },
+  });
+  const roomSlow = new Gauge({
+    name: `${p}room_slow`,
+    help: ' 1 while a room cannot keep the tick rate and runs slowed (only that room), else 0',
+    labelNames: ['room'],
+    registers,
+    collect() {
+      this.reset();
+      for (const r of paceSource()) this.set({ room: r.room }, r.slow ? 1 : 0);
+    },
+  });
   return {
     registry,
     wasmHeap,
     setRoomHeapSource: (source) => {
       heapSource = source;
+    },
+    roomTickRate,
+    roomSlow,
+    setRoomPaceSource: (source) => {
+      paceSource = source;
     },
     tickDuration: new Histogram({ name: `${p}tick_duration_seconds`, help: 'Wall time of one room tick (inputs, physics, snapshots, sends)', buckets: TICK_BUCKETS_SECONDS, registers }),
     physicsStep: new Histogram({ name: `${p}physics_step_seconds`, help: 'Wall time of Simulation.step in one room tick', buckets: TICK_BUCKETS_SECONDS, registers }),

@@ -2,10 +2,12 @@
 // The room manager uses it for rooms on the main thread, a room worker for its own rooms.
 import type { Clock } from '../shared/clock.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
+import type { CatchUpGate } from './catch-up-budget.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
 import { decideNetMode } from './net-mode-policy.ts';
 import { Room, RoomError, type RoomRecorder } from './room.ts';
+import type { PlayerInputState } from '../shared/protocol/record-delta.ts';
 import type { RoomFactory, RoomSimulationBuild, RoomSpec } from './room-manager.ts';
 
 /** What openRoom needs besides the spec. */
@@ -19,6 +21,8 @@ export interface OpenRoomOptions {
   maxCatchUpTicks?: number;
   maxInputLeadTicks?: number;
   pauseWhenEmpty?: boolean;
+  /** The catch-up budget of the calling thread (its rooms share it). */
+  catchUp?: CatchUpGate | null;
 }
 
 /** Builds a room (not started); throws RoomError for a bad scenario or parameters, or a recording that cannot start. */
@@ -37,6 +41,12 @@ export async function openRoom(spec: RoomSpec, opts: OpenRoomOptions): Promise<R
     built.sim.destroy();
     throw new RoomError(ErrorCode.Internal, `cannot start the recording of room ${id}: ${error instanceof Error ? error.message : String(error)}`);
   }
+  return roomAround(spec, built, recorder, opts);
+}
+
+/** The Room (not started) around a built simulation and its recorder (a resumed room's comes from its log). */
+export function roomAround(spec: RoomSpec, built: RoomSimulationBuild, recorder: RoomRecorder | null, opts: Omit<OpenRoomOptions, 'factory'>, predictInputs?: readonly PlayerInputState[]): Room {
+  const { id, scenario, seed } = spec;
   const netModeRequested = spec.netMode ?? 'auto';
   const sim = built.sim;
   const usesGameApi = (sim.gameInputFields?.length ?? 0) + (sim.gameStateFields?.length ?? 0) + (sim.gameMessageKinds?.length ?? 0) > 0;
@@ -61,5 +71,7 @@ export async function openRoom(spec: RoomSpec, opts: OpenRoomOptions): Promise<R
     maxInputLeadTicks: opts.maxInputLeadTicks,
     pauseWhenEmpty: opts.pauseWhenEmpty,
     recorder,
+    catchUp: opts.catchUp,
+    predictInputs,
   });
 }

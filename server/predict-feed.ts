@@ -1,6 +1,7 @@
 // A predict-mode room's feed: the record coder every member's stream shares, each tick's record framed once for all
 // members (with the state hash on hash ticks), and checkpoint messages for joining and resyncing members.
 import { carriesHash, encodeServerMessage, RecordDeltaCoder, type CheckpointMessage } from '../shared/protocol/index.ts';
+import type { PlayerInputState } from '../shared/protocol/record-delta.ts';
 import type { TickInputRecord } from '../shared/sim/types.ts';
 
 /** What the feed reads from the room's simulation. */
@@ -12,12 +13,14 @@ export interface FeedSimulation {
 
 /** One room's predict-mode feed; the room calls frame() after each step and checkpoint() between ticks. */
 export class PredictFeed {
-  private readonly coder = new RecordDeltaCoder();
+  private readonly coder: RecordDeltaCoder;
   private readonly sim: FeedSimulation;
   private readonly seed: number | string;
   private cachedCheckpoint: { tick: number; message: Uint8Array; sizeBytes: number } | null = null;
 
-  constructor(sim: FeedSimulation, seed: number | string) {
+  /** `inputs`: the players already in the game and their last commands (a room resumed mid-session); default none. */
+  constructor(sim: FeedSimulation, seed: number | string, inputs: readonly PlayerInputState[] = []) {
+    this.coder = new RecordDeltaCoder(inputs);
     this.sim = sim;
     this.seed = seed;
   }

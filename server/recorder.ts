@@ -68,6 +68,8 @@ export interface RoomRecorderOptions {
   checkpoint?: () => Uint8Array;
   /** Go on appending to this log (a resumed room) instead of creating one. */
   continueLog?: ContinuedLog;
+  /** Called once when the recording closes or fails. */
+  onClose?: () => void;
 }
 
 /** A running recording: the room's recorder plus what the server reports about it. */
@@ -135,6 +137,7 @@ export async function createRoomRecorder(opts: RoomRecorderOptions): Promise<Roo
   const stop = (error: unknown): void => {
     if (failed) return;
     failed = true;
+    opts.onClose?.();
     if (timer) clearInterval(timer);
     opts.logger.error({ room: opts.roomId, path, err: error }, 'recording failed; the room goes on without it');
     void writer.abandon().catch(() => undefined);
@@ -187,6 +190,7 @@ export async function createRoomRecorder(opts: RoomRecorderOptions): Promise<Roo
     async close(finalTick: number, finalHash: string | null): Promise<void> {
       if (failed) return;
       failed = true;
+      opts.onClose?.();
       if (timer) clearInterval(timer);
       commit?.clear();
       if (finalHash === null || finalTick !== writer.ticks) {

@@ -5,10 +5,10 @@ import { Simulation } from '../shared/sim/simulation.ts';
 import type { ScenarioDefinition } from '../shared/sim/scenario.ts';
 import type { Logger } from './logger.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
-import { createRoomRecorder, DEFAULT_CHECKPOINT_EVERY_SECONDS, type DurabilityOptions } from './recorder.ts';
+import { createRoomRecorder, DEFAULT_CHECKPOINT_EVERY_SECONDS, type ContinuedLog, type DurabilityOptions, type RoomRecording } from './recorder.ts';
 import { scenarioModuleHash } from './scenario-module.ts';
 import type { RoomFactory, RoomSimulationBuild } from './room-manager.ts';
-import type { RoomRecorder } from './room.ts';
+import type { RoomRecorder, RoomSimulation } from './room.ts';
 
 /** Where scenarios come from (scenarios/index.ts in the server; a fixed list in tests). */
 export interface ScenarioSource {
@@ -40,11 +40,48 @@ export interface RoomFactoryOptions {
   isolateRooms?: boolean;
 }
 
+/** What the factory does for recordings beyond new rooms: resumed rooms' logs, and each open room's recording. */
+export interface RecordingFactory {
+  /** A recording that goes on appending to a resumed room's log. */
+  continueRecording(room: { id: string; scenario: string; params: Readonly<Record<string, number>>; seed: number | string; sim: RoomSimulation }, log: ContinuedLog): Promise<RoomRecording>;
+  /** The input log an open room of this factory records into (null: none). */
+  recordingPath(roomId: string): string | null;
+  /** RoomFactory.createSimulation, typed with the Simulation it builds (a resume restores checkpoints into it). */
+  createSimulation(name: string, params: Readonly<Record<string, number>>, seed: number | string): Promise<RoomSimulationBuild & { sim: Simulation }>;
+}
+
 /**
  * A RoomFactory over Simulation.create with a heap guard and optional recording. It keeps no reference to an isolated
  * room's simulation: once the room closes and drops it, its Jolt module and 128 MB heap are garbage.
  */
-export function createRoomFactory(opts: RoomFactoryOptions): RoomFactory & { liveSimulations(): number } {
+export function createRoomFactory(opts: RoomFactoryOptions): RecordingFactory & RoomFactory & { liveSimulations(): number } {
+  // The open rooms' recordings by room id (a recording leaves when it closes): resume keys go beside their logs.
+  const recordings = new Map<string, RoomRecording>();
+  const record = async (room: { id: string; scenario: string; params: Readonly<Record<string, number>>; seed: number | string; sim: RoomSimulation }, dir: string, continueLog?: ContinuedLog): Promise<RoomRecording> => {
+    const sim = room.sim;
+    const def = opts.scenarios.get(room.scenario);
+    const recording: RoomRecording = await createRoomRecorder({
+      durability: opts.durability,
+      checkpointEveryTicks: Math.round((opts.checkpointEverySeconds ?? DEFAULT_CHECKPOINT_EVERY_SECONDS) * TICK_RATE_HZ),
+      checkpoint: sim.saveCheckpointBytes ? () => sim.saveCheckpointBytes!() : undefined,
+      dir,
+      roomId: room.id,
+      scenario: room.scenario,
+      scenarioHash: def ? await scenarioModuleHash(def) : '',
+      params: room.params,
+      seed: room.seed,
+      startTick: room.sim.tick,
+      initialHash: room.sim.stateHash(),
+      logger: opts.logger,
+      hashEveryTicks: opts.hashEveryTicks,
+      continueLog,
+      onClose: () => {
+        if (recordings.get(room.id) === recording) recordings.delete(room.id);
+      },
+    });
+    recordings.set(room.id, recording);
+    return recording;
+  };
   // Shared-module mode only: the worlds on the process-wide heap, for the free-memory guard (destroyed ones pruned).
   const live = new Set<Simulation>();
   const need = opts.minFreeHeapBytesForRoom ?? 32 * 1024 * 1024;
@@ -65,7 +102,7 @@ export function createRoomFactory(opts: RoomFactoryOptions): RoomFactory & { liv
       return live.size;
     },
     hasScenario: (name) => opts.scenarios.get(name) !== undefined,
-    async createSimulation(name, params, seed): Promise<RoomSimulationBuild> {
+    async createSimulation(name, params, seed): Promise<RoomSimulationBuild & { sim: Simulation }> {
       const def = opts.scenarios.get(name);
       if (!def) throw new Error(`unknown scenario "${name}" (known: ${opts.scenarios.names().join(', ')})`);
       const isolated = opts.isolateRooms ?? true;
@@ -79,23 +116,9 @@ export function createRoomFactory(opts: RoomFactoryOptions): RoomFactory & { liv
     },
     async createRecorder(room): Promise<RoomRecorder | null> {
       if (!opts.recordDir) return null;
-      const sim = room.sim;
-      const def = opts.scenarios.get(room.scenario);
-      return createRoomRecorder({
-        durability: opts.durability,
-        checkpointEveryTicks: Math.round((opts.checkpointEverySeconds ?? DEFAULT_CHECKPOINT_EVERY_SECONDS) * TICK_RATE_HZ),
-        checkpoint: sim.saveCheckpointBytes ? () => sim.saveCheckpointBytes!() : undefined,
-        dir: opts.recordDir,
-        roomId: room.id,
-        scenario: room.scenario,
-        scenarioHash: def ? await scenarioModuleHash(def) : '',
-        params: room.params,
-        seed: room.seed,
-        startTick: room.sim.tick,
-        initialHash: room.sim.stateHash(),
-        logger: opts.logger,
-        hashEveryTicks: opts.hashEveryTicks,
-      });
+      return record(room, opts.recordDir);
     },
+    continueRecording: (room, log) => record(room, '', log),
+    recordingPath: (roomId) => recordings.get(roomId)?.path ?? null,
   };
 }

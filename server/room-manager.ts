@@ -3,11 +3,14 @@
 // wherever a RoomHost opens them (the room workers).
 import type { Clock, TimerHandle } from '../shared/clock.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
+import type { CatchUpGate } from './catch-up-budget.ts';
 import type { HostedRoom } from './hosted-room.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
+import { NetMode } from '../shared/protocol/predict-messages.ts';
+import type { PlayerInputState } from '../shared/protocol/record-delta.ts';
 import type { NetModeRequest } from './net-mode-policy.ts';
-import { openRoom } from './open-room.ts';
+import { openRoom, roomAround } from './open-room.ts';
 import { Room, RoomError, type RoomInfo, type RoomRecorder, type RoomSimulation } from './room.ts';
 
 /** The id of the room that always exists. */
@@ -39,6 +42,8 @@ export interface RoomFactory {
   createRecorder?(room: { id: string; scenario: string; params: Readonly<Record<string, number>>; seed: number | string; sim: RoomSimulation }): Promise<RoomRecorder | null>;
   /** Whether `scenario` names a known scenario. */
   hasScenario(scenario: string): boolean;
+  /** The input log an open room records into (null: none), for resume keys. */
+  recordingPath?(roomId: string): string | null;
 }
 
 /** A room to open: what a RoomHost is asked for. */
@@ -88,6 +93,8 @@ export interface RoomManagerOptions {
   maxCatchUpTicks?: number;
   maxInputLeadTicks?: number;
   pauseWhenEmpty?: boolean;
+  /** The catch-up budget rooms opened on this thread share. Default none. */
+  catchUp?: CatchUpGate | null;
   /** Net mode of rooms not asked for one ('auto': predict where the cost estimate allows). Default 'auto'. */
   netMode?: NetModeRequest;
   /** Where rooms are opened; default: on this thread through `factory`. */
@@ -240,24 +247,62 @@ export class RoomManager {
   }
 
   private async buildClaimed(spec: RoomSpec): Promise<HostedRoom> {
-    const { id, scenario } = spec;
     const room = this.opts.host ? await this.opts.host.open(spec) : await openRoom(spec, this.opts);
+    return this.register(room);
+  }
+
+  /**
+   * Opens a room around a simulation that already ran (a log resumed after a crash, server/resume-rooms.ts) under
+   * its old id, on this thread; `prepare` runs before its first tick (it restores the held players). Throws RoomError
+   * when the id is taken or the server is closing. `predictInputs` (the players in the game and their last commands)
+   * lets predict mode's record stream go on; without them the room serves snapshots.
+   */
+  adopt(spec: RoomSpec, built: RoomSimulationBuild, recorder: RoomRecorder | null, prepare: (room: Room) => void, predictInputs: readonly PlayerInputState[] | null): Room {
+    if (this.closing) throw new RoomError(ErrorCode.Internal, 'the server is shutting down');
+    if (this.rooms.has(spec.id) || this.creating.has(spec.id)) throw new RoomError(ErrorCode.Internal, `room ${spec.id} is already open`);
+    const netMode = predictInputs === null ? NetMode.Snapshot : (spec.netMode ?? this.opts.netMode ?? 'auto');
+    const room = roomAround({ ...spec, netMode }, built, recorder, this.opts, predictInputs ?? undefined);
+    const directory = spec.id === DEFAULT_ROOM_ID ? undefined : this.opts.directory;
+    if (directory) {
+      // A resumed room takes its id back in the fleet directory (it had it before the crash; its claim lapsed).
+      directory.claim(spec.id).then(
+        () => (room.closed ? directory.release(spec.id) : room.onClose(() => directory.release(spec.id))),
+        (error: unknown) => this.opts.logger.error({ room: spec.id, err: error instanceof Error ? error.message : String(error) }, 'a resumed room could not take its id back in the fleet directory'),
+      );
+    }
+    return this.register(room, () => prepare(room));
+  }
+
+  private register<T extends HostedRoom>(room: T, prepare?: () => void): T {
+    const id = room.id;
     this.rooms.set(id, room);
     this.opts.metrics.rooms.set(this.rooms.size);
-    room.onClose(() => {
+    room.onClose((reason) => {
       this.rooms.delete(id);
       this.clearEmptyTimer(id);
       this.opts.metrics.rooms.set(this.rooms.size);
+      if (id === DEFAULT_ROOM_ID && this.opts.host) this.reopenDefault(reason);
     });
     if (id !== DEFAULT_ROOM_ID) {
       room.onEmptyChange((empty) => (empty ? this.armEmptyTimer(room) : this.clearEmptyTimer(id)));
       this.armEmptyTimer(room);
     }
+    prepare?.();
     room.start();
     const info = room.info();
-    this.opts.logger.info({ room: id, scenario, params: room.params, netMode: info.netMode, netModeNote: info.netModeNote }, 'room opened');
+    this.opts.logger.info({ room: id, scenario: room.scenarioName, params: room.params, netMode: info.netMode, netModeNote: info.netModeNote }, 'room opened');
     for (const fn of this.openedListeners) fn(room);
     return room;
+  }
+
+  // The room that always exists lost its worker (or failed there): open it again, retrying while no worker can take it.
+  private reopenDefault(reason: string, attempt = 1): void {
+    if (this.closing) return;
+    this.opts.logger.warn({ room: DEFAULT_ROOM_ID, reason, attempt }, 'the default room closed; opening it again');
+    this.opts.clock.setTimer(Math.min(5000, 250 * attempt), () => {
+      if (this.closing || this.rooms.has(DEFAULT_ROOM_ID) || this.creating.has(DEFAULT_ROOM_ID)) return;
+      this.start().catch((error: unknown) => this.reopenDefault(error instanceof Error ? error.message : String(error), attempt + 1));
+    });
   }
 
   private armEmptyTimer(room: HostedRoom): void {

@@ -3,100 +3,28 @@
 // fan-out (snapshot-fan-out.ts) that does the members' shared encoding work once per tick.
 import type { Clock } from '../shared/clock.ts';
 import { BODY_STATE_STRIDE, BodyFlag, type Vec3Like } from '../shared/physics/index.ts';
-import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '../shared/sim/types.ts';
+import type { BodyDescriptor, SimEvent, TickInputRecord } from '../shared/sim/types.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
-import type { GameInputField } from '../shared/sim/game-input.ts';
-import type { GameMessageKind } from '../shared/sim/game-messages.ts';
 import { GameMessageQueue } from './game-message-queue.ts';
-import type { GameStateField, GameStateValue } from '../shared/sim/game-state.ts';
 import { NetMode } from '../shared/protocol/predict-messages.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
+import type { CatchUpGate } from './catch-up-budget.ts';
 import type { HostedRoom, MemberSink, RoomEntry, Seat } from './hosted-room.ts';
 import { InputBuffer, OfferResult } from './input-buffer.ts';
 import type { NetModeRequest } from './net-mode-policy.ts';
 import { PredictFeed } from './predict-feed.ts';
+import type { PlayerInputState } from '../shared/protocol/record-delta.ts';
 import { enterRoom } from './local-seat.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
+import { RoomPace, type PaceReport } from './room-pace.ts';
 import { SnapshotFanOut } from './snapshot-fan-out.ts';
 import { TickClock } from './tick-clock.ts';
 
-/** The bulk body read the room hands to snapshot encoders (the world's readBodyStates() shape). */
-export interface BodyStates {
-  count: number;
-  ids: Uint32Array;
-  states: Float32Array;
-  flags: Uint8Array;
-}
+import type { RoomMember, RoomRecorder, RoomSimulation, WorldFrame } from './room-contracts.ts';
 
-/** The part of Simulation a room drives (shared/sim/simulation.ts satisfies it). */
-export interface RoomSimulation {
-  readonly tick: number;
-  step(record: TickInputRecord): SimEvent[];
-  stateHash(): string;
-  characters(): CharacterState[];
-  readBodyStates(): BodyStates;
-  staticDescriptors(): BodyDescriptor[];
-  bodyDescriptor(id: number): BodyDescriptor | undefined | null;
-  destroy(): void;
-  /** The scenario's game input fields (name order); absent or empty: none. */
-  readonly gameInputFields?: readonly GameInputField[];
-  /** The scenario's game message kinds (name order); absent or empty: none. */
-  readonly gameMessageKinds?: readonly GameMessageKind[];
-  /** The scenario's game state fields (name order); absent or empty: none. */
-  readonly gameStateFields?: readonly GameStateField[];
-  /** Changes whenever the game state does. */
-  readonly gameStateVersion?: number;
-  /** The game state values in field order. */
-  gameStateValues?(): GameStateValue[];
-  /** The simulation's byte checkpoint (for checkpoints in recordings), when it has one. */
-  saveCheckpointBytes?(): Uint8Array;
-  /** The world's WASM heap (for /metrics), when the simulation has one. */
-  readonly world?: { freeHeapBytes(): number; totalHeapBytes(): number };
-}
-
-/** Where a room's input records go (the --record writer). A recorder never throws into the room. */
-export interface RoomRecorder {
-  /** The exact record about to be stepped (write-ahead). */
-  append(record: TickInputRecord): void;
-  /** After the step; `tick` is the simulation's tick counter now, `hash` computes its state hash on demand. */
-  afterStep(tick: number, hash: () => string): void;
-  /** Writes the end record (none when the hash is null: the room failed), flushes and closes. */
-  close(finalTick: number, finalHash: string | null): Promise<void>;
-  /**
-   * Calls `send` (the tick's events and frame) once the log holds the tick durably, in tick order; absent: at once.
-   * This is how nothing a client sees can be missing from the log after a crash (--durability tick).
-   */
-  release?(tick: number, send: () => void): void;
-}
-
-/** The world after one snapshot tick, shared by every member's encoder (copies: valid after the tick). */
-export interface WorldFrame {
-  /** The tick just simulated (events of that tick carry the same number). */
-  tick: number;
-  bodies: BodyStates;
-  characters: readonly CharacterState[];
-  /**
-   * Descriptors of the frame's dynamic bodies as of its tick, when the frame leaves later than its tick (a durable
-   * recording holds it back until the tick is on disk) and a body spawned in it may be gone by then.
-   */
-  descriptors?: ReadonlyMap<number, BodyDescriptor>;
-}
-
-/** What a room needs from each connected member (the client session implements it). */
-export interface RoomMember {
-  /** The tick's events (sorted, stamped), delivered reliably; called only for ticks that have events. */
-  deliverEvents(tick: number, events: readonly SimEvent[]): void;
-  /** A world frame at the member's snapshot rate. */
-  deliverFrame(frame: WorldFrame): void;
-  /** The room has closed; the member is no longer in it. */
-  roomClosed(reason: string): void;
-  /** The room removed this member (its delivery failed); the room goes on. */
-  removed(reason: string): void;
-  /** Predict mode: the framed confirmed record of `tick` (every tick, in order). */
-  deliverRecord?(tick: number, message: Uint8Array): void;
-}
+export type { BodyStates, RoomMember, RoomRecorder, RoomSimulation, WorldFrame } from './room-contracts.ts';
 
 /** A refusal with a stable code the session forwards to the client. */
 export class RoomError extends Error {
@@ -134,6 +62,10 @@ export interface RoomOptions {
   /** Stop ticking while nobody is in the room. Default true. */
   pauseWhenEmpty?: boolean;
   recorder?: RoomRecorder | null;
+  /** The catch-up budget of the thread the room runs on (shared by its rooms). Default none. */
+  catchUp?: CatchUpGate | null;
+  /** A resumed room's players already in the game with their last commands, for predict mode's record stream. */
+  predictInputs?: readonly PlayerInputState[];
   /** How the room serves its members (decided by net-mode-policy.ts). Default snapshot. */
   netMode?: NetMode;
   /** The mode the room was asked for. Default: netMode. */
@@ -151,8 +83,8 @@ export interface JoinResult {
   firstInputTick: number;
 }
 
-/** A room's public summary (GET /api/rooms). */
-export interface RoomInfo {
+/** A room's public summary (GET /api/rooms): who is in it, and its pace (ticksPerSecond, slow). */
+export interface RoomInfo extends PaceReport {
   id: string;
   scenario: string;
   clients: number;
@@ -206,6 +138,8 @@ export class Room implements HostedRoom {
   private closedReason: string | null = null;
   private snapshotAccumulator = 0;
   private busySecondsTotal = 0;
+  private cpuSecondsTotal = 0;
+  private readonly paceMeter: RoomPace;
   private lastBodyCount = 0;
   // Static bodies the scene was built with: drawn from the welcome, never in snapshots. Statics spawned later
   // (streamed terrain) travel in snapshots instead, so clients already in the room learn about them.
@@ -226,13 +160,14 @@ export class Room implements HostedRoom {
     this.bounds = opts.bounds ?? { min: { x: -500, y: -500, z: -500 }, max: { x: 500, y: 500, z: 500 } };
     this.params = opts.params;
     this.seed = opts.seed;
+    this.paceMeter = new RoomPace(opts.clock);
     this.netMode = opts.netMode ?? NetMode.Snapshot;
     this.netModeRequested = opts.netModeRequested ?? this.netMode;
     this.predictFeed = null;
     if (this.netMode === NetMode.Predict) {
       const save = sim.saveCheckpointBytes?.bind(sim);
       if (!save) throw new Error(`room ${opts.id}: predict mode needs a simulation with saveCheckpointBytes()`);
-      this.predictFeed = new PredictFeed({ get tick() { return sim.tick; }, stateHash: () => sim.stateHash(), saveCheckpointBytes: save }, opts.seed);
+      this.predictFeed = new PredictFeed({ get tick() { return sim.tick; }, stateHash: () => sim.stateHash(), saveCheckpointBytes: save }, opts.seed, opts.predictInputs);
     }
     this.snapshots = new SnapshotFanOut({
       bounds: this.bounds,
@@ -248,10 +183,13 @@ export class Room implements HostedRoom {
       clock: opts.clock,
       tickRateHz: TICK_RATE_HZ,
       maxCatchUpTicks: opts.maxCatchUpTicks ?? 4,
+      catchUp: opts.catchUp,
       onTick: () => this.tickOnce(),
       onSlowdown: (r) => {
         opts.metrics.ticksSkipped.inc(r.skippedTicks);
-        opts.logger.warn({ room: this.id, tick: r.tick, skippedTicks: r.skippedTicks, lostMs: Math.round(r.lostMs) }, 'room cannot keep up: slowing down');
+        // Once per episode: a room that cannot keep up gives up ticks on nearly every wake-up.
+        if (!this.paceMeter.rate().slow) opts.logger.warn({ room: this.id, tick: r.tick, skippedTicks: r.skippedTicks, lostMs: Math.round(r.lostMs) }, 'room cannot keep up: slowing down');
+        this.paceMeter.slowedDown();
       },
       onError: (error) => this.fail(error),
     });
@@ -289,9 +227,19 @@ export class Room implements HostedRoom {
     return this.players.has(playerId);
   }
 
-  /** Wall seconds this room's ticks have taken since it opened (its load on its thread). */
+  /** Ticks per second over the last second and whether the room runs slowed (cheap: no percentiles). */
+  pace(): { ticksPerSecond: number; slow: boolean } {
+    return this.paceMeter.rate();
+  }
+
+  /** Wall seconds this room's ticks have taken since it opened. */
   get busySeconds(): number {
     return this.busySecondsTotal;
+  }
+
+  /** CPU seconds of its thread this room's ticks have used since it opened (its load on its thread). */
+  get cpuSeconds(): number {
+    return this.cpuSecondsTotal;
   }
 
   /** Whether the room has closed. */
@@ -315,7 +263,7 @@ export class Room implements HostedRoom {
 
   /** The room's summary. */
   info(): RoomInfo {
-    const info: RoomInfo = { id: this.id, scenario: this.scenarioName, clients: this.players.size, tick: this.sim.tick, bodies: this.lastBodyCount, params: this.params, netMode: this.netMode };
+    const info: RoomInfo = { id: this.id, scenario: this.scenarioName, clients: this.players.size, tick: this.sim.tick, bodies: this.lastBodyCount, params: this.params, netMode: this.netMode, ...this.paceMeter.report() };
     if (this.opts.netModeNote) info.netModeNote = this.opts.netModeNote;
     return info;
   }
@@ -346,6 +294,20 @@ export class Room implements HostedRoom {
       this.tickClock.start();
     }
     return { playerId, joinTick, firstInputTick };
+  }
+
+  /**
+   * A resumed room's players (in its world, their links gone with the crashed process) held like dropped players
+   * until they reconnect or leave; new players get ids after `lastPlayerId`. Only before the first tick.
+   */
+  restorePlayers(players: ReadonlyArray<{ playerId: number; name: string; last: InputCommand }>, lastPlayerId: number): void {
+    for (const { playerId, name, last } of players) {
+      const inputs = new InputBuffer(this.sim.tick, this.opts.maxInputLeadTicks ?? 120);
+      inputs.suspend(heldInput(last));
+      this.players.set(playerId, { playerId, name, member: null, inputs, inWorld: true });
+      this.opts.metrics.players.inc();
+    }
+    this.nextPlayerId = Math.max(this.nextPlayerId, lastPlayerId + 1);
   }
 
   /** Seats a member (a new player, or a held one taken back) with its welcome; rejects with a RoomError when refused. */
@@ -441,6 +403,7 @@ export class Room implements HostedRoom {
   tickOnce(): void {
     if (this.closed) return;
     const started = performance.now();
+    const cpuStarted = process.threadCpuUsage();
     const tick = this.sim.tick;
     const leaves = this.pendingLeaves.sort((a, b) => a - b);
     this.pendingLeaves = [];
@@ -468,20 +431,28 @@ export class Room implements HostedRoom {
       if (p) p.inWorld = true;
     }
     m.ticks.inc();
-    if (this.players.size === 0 && (this.opts.pauseWhenEmpty ?? true) && this.pendingLeaves.length === 0) this.tickClock.stop();
+    if (this.players.size === 0 && (this.opts.pauseWhenEmpty ?? true) && this.pendingLeaves.length === 0) {
+      this.tickClock.stop();
+      this.paceMeter.paused();
+    }
     const send = this.deliver(tick, events, this.predictFeed?.frame(record) ?? null);
     if (this.opts.recorder?.release) this.opts.recorder.release(tick, send);
     else send();
     for (const fn of this.tickListeners) fn(record, events);
     const seconds = (performance.now() - started) / 1000;
+    const cpu = process.threadCpuUsage(cpuStarted);
+    const cpuSeconds = (cpu.user + cpu.system) / 1e6;
     this.busySecondsTotal += seconds;
+    this.cpuSecondsTotal += cpuSeconds;
+    this.paceMeter.ticked(seconds * 1000, cpuSeconds * 1000);
     m.tickDuration.observe(seconds);
     if (seconds > 1 / TICK_RATE_HZ) m.tickOverruns.inc();
   }
 
   /** Does the tick's bookkeeping now and returns what sends its events and frame (possibly later, see release). */
   private deliver(tick: number, events: readonly SimEvent[], recordMessage: Uint8Array | null): () => void {
-    for (const e of events) if (e.type === 'bodyRemoved') this.sceneStatics.delete(e.bodyId); // its id may be reused
+    // A removed scene static stays one until this tick is sent: a held frame taken before it still shows the body.
+    const removed = events.flatMap((e) => (e.type === 'bodyRemoved' ? [e.bodyId] : []));
     let frame: WorldFrame | null = null;
     this.snapshotAccumulator += this.opts.snapshotRateHz;
     if (this.snapshotAccumulator + 1e-9 >= TICK_RATE_HZ) {
@@ -508,6 +479,7 @@ export class Room implements HostedRoom {
       if (recordMessage !== null) for (const p of members) this.safely(p, () => p.member.deliverRecord?.(tick, recordMessage));
       if (events.length > 0) for (const p of members) this.safely(p, () => p.member.deliverEvents(tick, events));
       if (frame) for (const p of members) this.safely(p, () => p.member.deliverFrame(frame));
+      for (const id of removed) this.sceneStatics.delete(id); // its id may be reused
     };
   }
 

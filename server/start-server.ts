@@ -26,9 +26,11 @@ import { createMetrics, type ServerMetrics } from './metrics.ts';
 import { PACKAGE_ROOT } from './package-root.ts';
 import { createRoomFactory, type ScenarioSource } from './room-factory.ts';
 import type { DurabilityOptions } from './recorder.ts';
+import { rememberResumeKey, reopenRooms, scanForResume, type ResumeScan } from './resume-rooms.ts';
 import { checkReplayLog, withReplayLog } from './replay-log.ts';
 import { createStaticHandler } from './static-files.ts';
 import { attachWsGateway } from './ws-gateway.ts';
+import { WORKER_BUDGET_MS_PER_TICK } from './workers/room-cost.ts';
 import { WorkerPool } from './workers/worker-pool.ts';
 
 /** Where the built browser client is served from by default. */
@@ -56,6 +58,8 @@ export interface StartServerOptions extends AccessOptions {
   durability?: DurabilityOptions;
   /** A checkpoint in recordings every N seconds of play (0: none). Default 10. */
   checkpointEverySeconds?: number;
+  /** Reopen the rooms of every interrupted recording in this directory before anything else (serve --resume). */
+  resumeDir?: string | null;
   /** Most clients per room. Default 32. */
   maxClients?: number;
   maxConnections?: number;
@@ -110,6 +114,8 @@ export interface RunningServer {
   readonly logger: Logger;
   /** Who may open a WebSocket (per-address counts, back-off). */
   readonly policy: ConnectionPolicy;
+  /** What --resume found: rooms reopened, logs refused (null without --resume). */
+  readonly resumed: ResumeScan | null;
   /** This process's membership of the fleet, when started with one. */
   readonly fleet: FleetDirectory | null;
   /** The Agones lifecycle, when run under Agones. */
@@ -169,6 +175,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
             maxClientsPerRoom: opts.maxClients ?? 32,
             recordDir: opts.recordDir ?? null,
             recordHashEveryTicks: opts.recordHashEveryTicks,
+            budgetMsPerTick: WORKER_BUDGET_MS_PER_TICK,
             durability: opts.durability,
             checkpointEverySeconds: opts.checkpointEverySeconds,
           },
@@ -176,9 +183,18 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
           logLevel: logger.level,
           logger,
         });
+  const factory = createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null, hashEveryTicks: opts.recordHashEveryTicks, durability: opts.durability, checkpointEverySeconds: opts.checkpointEverySeconds });
+  let resumed: ResumeScan | null = null;
+  const resumeDir = opts.resumeDir ?? null;
   const game = await GameServer.create({
     workers,
-    factory: createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null, hashEveryTicks: opts.recordHashEveryTicks, durability: opts.durability, checkpointEverySeconds: opts.checkpointEverySeconds }),
+    factory,
+    beforeDefaultRoom: async (server) => {
+      if (resumeDir === null) return;
+      resumed = await scanForResume(resumeDir, factory, logger);
+      await reopenRooms(server, resumed, factory, logger);
+    },
+    onResumeTokenIssued: (room, playerId, key) => rememberResumeKey(room.recordingPath ?? factory.recordingPath(room.id), room.id, playerId, key, logger),
     defaultScenario: scenarioName,
     defaultParams: opts.params,
     seed: opts.seed,
@@ -265,6 +281,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     game,
     logger,
     policy,
+    resumed,
     fleet,
     get agones() {
       return agones;

@@ -1,6 +1,8 @@
 // The fixed-rate tick driver: tick k is due at start + k × dt on a monotonic Clock (absolute targets, so no drift),
-// runs late ticks back to back up to a catch-up limit, then gives up the lost time (slows down) and reports it.
+// runs late ticks back to back up to a catch-up limit (and only while its thread's catch-up budget allows), then gives
+// up the lost time (slows down) and reports it.
 import type { Clock, TimerHandle } from '../shared/clock.ts';
+import type { CatchUpGate } from './catch-up-budget.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 
 /** What the driver reports when it had to give up time instead of catching up. */
@@ -26,6 +28,8 @@ export interface TickClockOptions {
   onSlowdown?: (report: SlowdownReport) => void;
   /** Called when onTick throws; the clock is stopped first. */
   onError?: (error: unknown) => void;
+  /** The thread's catch-up budget: overdue ticks past the first of a wake-up run only while it allows. Default none. */
+  catchUp?: CatchUpGate | null;
 }
 
 // Float slack when comparing a due time to "now" (a manual clock lands exactly on due times modulo rounding).
@@ -40,6 +44,7 @@ export class TickClock {
   private readonly onTick: (tick: number) => void;
   private readonly onSlowdown: ((r: SlowdownReport) => void) | undefined;
   private readonly onError: ((e: unknown) => void) | undefined;
+  private readonly catchUp: CatchUpGate | null;
   private originMs = 0;
   private ticks = 0;
   private running = false;
@@ -59,6 +64,7 @@ export class TickClock {
     this.onTick = opts.onTick;
     this.onSlowdown = opts.onSlowdown;
     this.onError = opts.onError;
+    this.catchUp = opts.catchUp ?? null;
   }
 
   /** Ticks run so far (the index the next tick will get). */
@@ -107,18 +113,23 @@ export class TickClock {
   }
 
   /**
-   * Runs every tick due now, at most maxCatchUpTicks; if more were due, gives up the rest (the next tick becomes
+   * Runs every tick due now, at most maxCatchUpTicks (past the first, only while the catch-up budget allows: the rest
+   * stay due for the next wake-up); if more than maxCatchUpTicks were due, gives up the rest (the next tick becomes
    * due one dt from now) and reports a slowdown. Returns how many ticks ran.
    */
   poll(): number {
     const now = this.clock.nowMs();
     let due = 0;
     while (due <= this.maxCatchUpTicks && this.dueAt(this.ticks + due) <= now + EPSILON_MS) due++;
-    const run = Math.min(due, this.maxCatchUpTicks);
-    for (let i = 0; i < run; i++) {
+    const allowed = Math.min(due, this.maxCatchUpTicks);
+    let run = 0;
+    for (; run < allowed; run++) {
+      if (run > 0 && this.catchUp !== null && !this.catchUp.allows()) break;
       const tick = this.ticks;
       this.ticks++;
+      const startedMs = this.catchUp === null ? 0 : performance.now();
       this.onTick(tick);
+      this.catchUp?.spend(performance.now() - startedMs);
     }
     if (due > this.maxCatchUpTicks) {
       // More were due than we may catch up: count every overdue tick, then re-anchor so the next is due in one dt.

@@ -47,6 +47,10 @@ export interface ServerReport {
   bytesReceived: number;
   bytesSent: number;
   rooms: RoomReport[];
+  /** The main thread's own CPU time in the window (ms): with room workers, the socket and session work alone. */
+  mainThreadCpuMs: number;
+  /** Room workers the server ran (0: rooms on the main thread). */
+  roomWorkers: number;
 }
 
 /** The bots' view of one window. */
@@ -69,10 +73,13 @@ export interface BenchServer {
   pinning: { server: number; bots: number } | null;
 }
 
-/** Starts the server process on a scene (pinned to CPU 0 when taskset and a second CPU exist). */
-export async function startBenchServer(scene: Scene, snapshotRateHz: number, maxClients: number): Promise<BenchServer> {
+/**
+ * Starts the server process on a scene (pinned to CPU 0 when taskset and a second CPU exist), its rooms on the main
+ * thread or in `roomWorkers` worker threads (pinned with it: the figure is per core).
+ */
+export async function startBenchServer(scene: Scene, snapshotRateHz: number, maxClients: number, roomWorkers = 0): Promise<BenchServer> {
   const pinning = cpus().length >= 2 && canPin() ? { server: 0, bots: 1 } : null;
-  const child = startNode(SERVER, [scene.scenario, JSON.stringify(scene.params), String(snapshotRateHz), String(maxClients)], { stdin: true, cpu: pinning?.server });
+  const child = startNode(SERVER, [scene.scenario, JSON.stringify(scene.params), String(snapshotRateHz), String(maxClients), String(roomWorkers)], { stdin: true, cpu: pinning?.server });
   const wsUrl = await nextJson<string>(child, 'wsUrl', 60_000);
   return { child, wsUrl, pinning };
 }

@@ -2,7 +2,9 @@
 // scene's default room) with the connection caps (total and per address) and room caps lifted, every room's ticks timed (wall and this thread's
 // CPU), GC pauses observed, the process's own CPU time counted. Prints {"wsUrl"} when listening. Stdin commands:
 // "rooms N" opens rooms r1…rN of the same scene (prints {"rooms"}); "mark" starts a measurement window; "report"
-// prints the window as one JSON line. Run: node bench/procs/bench-server.ts SCENARIO PARAMS_JSON SNAPSHOT_HZ MAX_CLIENTS
+// prints the window as one JSON line. With ROOM_WORKERS > 0 the rooms run in worker threads and their figures come
+// from the server's own room list (pace: ticks, tick p99s, longest gap between tick starts).
+// Run: node bench/procs/bench-server.ts SCENARIO PARAMS_JSON SNAPSHOT_HZ MAX_CLIENTS [ROOM_WORKERS]
 import { PerformanceObserver } from 'node:perf_hooks';
 import { createInterface } from 'node:readline';
 import type { Room } from '../../server/room.ts';
@@ -12,11 +14,12 @@ import { startServer } from '../../server/start-server.ts';
 import { gcPausePerTick, maxGap, type GcPause } from '../lib/rules.ts';
 import { quantile, round } from '../lib/stats.ts';
 
-const [scenario, paramsJson, rateArg, maxArg] = process.argv.slice(2);
+const [scenario, paramsJson, rateArg, maxArg, workersArg] = process.argv.slice(2);
+const roomWorkers = Number(workersArg ?? 0);
 const snapshotRateHz = Number(rateArg);
 const maxClients = Number(maxArg);
-if (!scenario || !paramsJson || !Number.isInteger(snapshotRateHz) || !Number.isInteger(maxClients)) {
-  process.stderr.write('usage: node bench/procs/bench-server.ts SCENARIO PARAMS_JSON SNAPSHOT_HZ MAX_CLIENTS\n');
+if (!scenario || !paramsJson || !Number.isInteger(snapshotRateHz) || !Number.isInteger(maxClients) || !Number.isInteger(roomWorkers)) {
+  process.stderr.write('usage: node bench/procs/bench-server.ts SCENARIO PARAMS_JSON SNAPSHOT_HZ MAX_CLIENTS [ROOM_WORKERS]\n');
   process.exit(2);
 }
 const params = JSON.parse(paramsJson) as Record<string, number>;
@@ -37,6 +40,7 @@ const server = await startServer({
   connectionPolicy: { maxSocketsPerAddress: Infinity, maxPendingPerAddress: Infinity },
   logger: silentLogger(),
   metrics,
+  roomWorkers,
 });
 
 interface TickLog {
@@ -64,8 +68,10 @@ function instrument(room: Room): void {
   };
 }
 const defaultRoom = server.game.rooms.local('default');
-if (!defaultRoom) throw new Error('bench-server: no default room');
-instrument(defaultRoom);
+if (defaultRoom) instrument(defaultRoom);
+else if (roomWorkers === 0) throw new Error('bench-server: no default room');
+/** Rooms in workers: their tick counters at the window's mark. */
+let ticksAtMark = new Map<string, number>();
 
 const pauses: GcPause[] = [];
 const gcObserver = new PerformanceObserver((list) => {
@@ -73,25 +79,24 @@ const gcObserver = new PerformanceObserver((list) => {
 });
 gcObserver.observe({ entryTypes: ['gc'] });
 
-async function counter(c: { get(): Promise<{ values: Array<{ value: number }> }> }): Promise<number> {
-  return (await c.get()).values.reduce((s, v) => s + v.value, 0);
-}
-
+/** Counters summed over this thread's registry and every room worker's (snapshots and ticks are counted where rooms run). */
 async function counters(): Promise<Record<'sent' | 'skipped' | 'ticksSkipped' | 'messagesIn' | 'bytesIn' | 'bytesOut', number>> {
+  const registries = [await metrics.registry.getMetricsAsJSON(), ...(server.game.workers ? await server.game.workers.metricsJson() : [])] as Array<Array<{ name: string; values: Array<{ value: number }> }>>;
+  const sum = (name: string): number => registries.flat().filter((m) => m.name === name).reduce((s, m) => s + m.values.reduce((a, v) => a + v.value, 0), 0);
   return {
-    sent: await counter(metrics.snapshotsSent),
-    skipped: await counter(metrics.snapshotsSkipped),
-    ticksSkipped: await counter(metrics.ticksSkipped),
-    messagesIn: await counter(metrics.messagesReceived),
-    bytesIn: await counter(metrics.bytesReceived),
-    bytesOut: await counter(metrics.bytesSent),
+    sent: sum('taos_snapshots_sent_total'),
+    skipped: sum('taos_snapshots_skipped_total'),
+    ticksSkipped: sum('taos_ticks_skipped_total'),
+    messagesIn: sum('taos_messages_received_total'),
+    bytesIn: sum('taos_bytes_received_total'),
+    bytesOut: sum('taos_bytes_sent_total'),
   };
 }
 
 const summary = (xs: number[]): { p50: number; p99: number; max: number } | null =>
   xs.length === 0 ? null : { p50: round(quantile(xs, 0.5), 3), p99: round(quantile(xs, 0.99), 3), max: round(Math.max(...xs), 3) };
 
-let mark = { atMs: performance.now(), cpu: process.cpuUsage(), ...(await counters()) };
+let mark = { atMs: performance.now(), cpu: process.cpuUsage(), mainCpu: process.threadCpuUsage(), ...(await counters()) };
 
 async function openRooms(n: number): Promise<string[]> {
   if (!Number.isInteger(n) || n < 0 || n > MAX_ROOMS) throw new Error(`bench-server: rooms must be in [0, ${MAX_ROOMS}], got ${n}`);
@@ -107,10 +112,28 @@ async function openRooms(n: number): Promise<string[]> {
   return ids;
 }
 
+/** Rooms in workers as the server's room list tells them (tick p99s and the longest gap cover their last 600 ticks). */
+function workerRooms(): unknown[] {
+  return server.game.rooms
+    .list()
+    .filter((r) => ticksAtMark.has(r.id) && (r.clients > 0 || r.tick > ticksAtMark.get(r.id)!))
+    .map((r) => ({
+      id: r.id,
+      clients: r.clients,
+      bodies: r.bodies,
+      ticks: r.tick - ticksAtMark.get(r.id)!,
+      cpuMsTotal: null,
+      tickWallMs: r.tickMsP99 === null ? null : { p50: null, p99: r.tickMsP99, max: null },
+      tickCpuMs: r.tickCpuMsP99 === null ? null : { p50: null, p99: r.tickCpuMsP99, max: null },
+      maxGapMs: r.tickGapMsMax,
+    }));
+}
+
 async function report(): Promise<unknown> {
   const now = await counters();
   const endMs = performance.now();
   const cpu = process.cpuUsage(mark.cpu);
+  const mainCpu = process.threadCpuUsage(mark.mainCpu);
   const seconds = (endMs - mark.atMs) / 1000;
   const perTickGc = gcPausePerTick(mark.atMs, endMs, pauses);
   const windowPauses = pauses.filter((p) => p.startTime >= mark.atMs && p.startTime < endMs);
@@ -130,7 +153,9 @@ async function report(): Promise<unknown> {
     messagesReceived: now.messagesIn - mark.messagesIn,
     bytesReceived: now.bytesIn - mark.bytesIn,
     bytesSent: now.bytesOut - mark.bytesOut,
-    rooms: logs
+    mainThreadCpuMs: (mainCpu.user + mainCpu.system) / 1000,
+    roomWorkers,
+    rooms: roomWorkers > 0 ? workerRooms() : logs
       .filter((l) => l.startsMs.length > 0 || l.room.clientCount > 0)
       .map((l) => ({
         id: l.room.id,
@@ -159,7 +184,8 @@ lines.on('line', (line) => {
           l.cpuMs = [];
         }
         pauses.length = 0;
-        mark = { atMs: performance.now(), cpu: process.cpuUsage(), ...(await counters()) };
+        ticksAtMark = new Map(server.game.rooms.list().map((r) => [r.id, r.tick]));
+        mark = { atMs: performance.now(), cpu: process.cpuUsage(), mainCpu: process.threadCpuUsage(), ...(await counters()) };
         say({ marked: true });
       } else if (cmd === 'report') say({ report: await report() });
     } catch (error) {

@@ -143,6 +143,7 @@ export class GameLoop {
       serverTick: this.session.serverTick,
       rttMs: this.session.rttMs,
       inputLeadTicks: this.session.inputLeadTicks,
+      roomPace: this.session.roomPace,
       snapshotsPerSecond: this.history.snapshotsPerSecond(nowMs),
       kbpsIn: this.history.kbpsIn(nowMs),
       interpolationDelayMs: f.delayMs,

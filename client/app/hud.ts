@@ -8,6 +8,8 @@ export interface HudValues {
   serverTick: number;
   rttMs: number | null;
   inputLeadTicks: number | null;
+  /** The room's ticks per second and whether it runs slowed (server's word, last pong). */
+  roomPace: { ticksPerSecond: number; slow: boolean } | null;
   snapshotsPerSecond: number;
   kbpsIn: number;
   interpolationDelayMs: number;
@@ -25,6 +27,7 @@ const ROWS: ReadonlyArray<[keyof HudValues, string, (v: HudValues) => string]> =
   ['serverTick', 'server tick', (v) => String(v.serverTick)],
   ['rttMs', 'RTT', (v) => (v.rttMs === null ? '…' : `${v.rttMs.toFixed(0)} ms`)],
   ['inputLeadTicks', 'input lead', (v) => (v.inputLeadTicks === null ? '…' : `${v.inputLeadTicks.toFixed(2)} ticks`)],
+  ['roomPace', 'room rate', (v) => (v.roomPace === null ? '…' : `${v.roomPace.ticksPerSecond} ticks/s${v.roomPace.slow ? ' (slowed: the server cannot keep up)' : ''}`)],
   ['snapshotsPerSecond', 'snapshots', (v) => `${v.snapshotsPerSecond.toFixed(0)} /s`],
   ['kbpsIn', 'in', (v) => `${v.kbpsIn.toFixed(1)} kbps`],
   ['interpolationDelayMs', 'interp delay', (v) => `${v.interpolationDelayMs.toFixed(0)} ms (${v.bufferDepth} ahead)`],

@@ -168,10 +168,11 @@ function join(room: string | null, name: string): void {
     onEvents(events) {
       world.queueEvents(events);
     },
-    onReconnecting(attempt, reason) {
+    onReconnecting(attempt, reason, serverRestarting) {
       page.connected = false;
       page.phase = 'connecting';
-      showMessage('Connection lost', `${reason}\nReconnecting (attempt ${attempt})…`, 'info');
+      if (serverRestarting) showMessage('Server restarted, rejoining', `The server went away and is coming back: rejoining (attempt ${attempt})…`, 'info');
+      else showMessage('Connection lost', `${reason}\nReconnecting (attempt ${attempt})…`, 'info');
     },
     onNotice(line) {
       console.warn(line);

@@ -35,7 +35,8 @@ export interface SessionHandlers {
   onSnapshot(tick: number, sizeBytes: number, descriptors: readonly BodyDescriptor[]): void;
   onEvents(events: readonly SimEvent[]): void;
   /** The connection dropped and the library is trying again (attempt counts from 1). */
-  onReconnecting(attempt: number, reason: string): void;
+  /** The link dropped and the client library is retrying; `serverRestarting`: the server itself went away. */
+  onReconnecting(attempt: number, reason: string, serverRestarting: boolean): void;
   /** The session is over for good (server bye, refused, unreachable, or our own close). */
   onClosed(reason: string, detail: string): void;
   /** Something worth telling the user that does not end the session (a refused message, a bad snapshot). */
@@ -52,6 +53,8 @@ export interface NetSession {
   readonly inputLeadTicks: number | null;
   /** The newest tick an own command was fixed and sent for (−1 before any): a new command goes into later ticks. */
   readonly newestInputTick: number;
+  /** The room's ticks per second and whether the server says it runs slowed (null before the first pong). */
+  readonly roomPace: { ticksPerSecond: number; slow: boolean } | null;
   /** The interpolated world at `nowMs` (performance.now() clock). */
   frame(nowMs: number): SessionFrame;
   /** The command to send for the coming ticks (the library sends at 60 Hz). */

@@ -29,7 +29,7 @@ export function openSession(wsUrl: string, opts: { name: string; room: string | 
   );
   client.on('snapshot', (s) => handlers.onSnapshot(s.tick, s.sizeBytes, s.descriptors));
   client.on('events', (events) => handlers.onEvents(events));
-  client.on('reconnecting', (r) => handlers.onReconnecting(r.attempt, r.reason));
+  client.on('reconnecting', (r) => handlers.onReconnecting(r.attempt, r.reason, r.serverRestarting));
   client.on('closed', (c) => handlers.onClosed(c.reason, c.detail));
   client.on('serverError', (e) => handlers.onNotice(`server refused: ${e.code}: ${e.message}`));
   client.on('protocolError', (m) => handlers.onNotice(`protocol problem: ${m}`));
@@ -47,6 +47,9 @@ export function openSession(wsUrl: string, opts: { name: string; room: string | 
     },
     get newestInputTick() {
       return client.stats().newestInputTick;
+    },
+    get roomPace() {
+      return client.stats().roomPace;
     },
     frame(nowMs: number): SessionFrame {
       const f = client.sample(nowMs);
@@ -67,6 +70,7 @@ function closedSession(): NetSession {
     rttMs: null,
     inputLeadTicks: null,
     newestInputTick: -1,
+    roomPace: null,
     frame: () => ({ view: null, renderTick: 0, bufferDepth: 0, delayMs: 0 }),
     setInput: () => undefined,
     close: () => undefined,

@@ -35,6 +35,8 @@ export interface ResumeTokensOptions {
   /** How long a dropped player is held. */
   graceMs: number;
   logger?: Logger;
+  /** Hears every token issued, by its key (SHA-256, never the token): a recording keeps them for --resume. */
+  onIssue?: (room: Room, playerId: number, key: string) => void;
 }
 
 /** Tokens by their SHA-256, so a lookup's timing says nothing about any token's text. */
@@ -47,6 +49,7 @@ export class ResumeTokens {
   readonly graceMs: number;
   private readonly clock: Clock;
   private readonly logger: Logger | null;
+  private readonly onIssue: ResumeTokensOptions['onIssue'];
   private readonly byKey = new Map<string, Entry>();
   private readonly byRoom = new Map<Room, Map<number, Entry>>();
   private readonly spent = new Map<string, string>();
@@ -56,6 +59,7 @@ export class ResumeTokens {
     this.clock = opts.clock;
     this.graceMs = opts.graceMs;
     this.logger = opts.logger ?? null;
+    this.onIssue = opts.onIssue;
   }
 
   /** Players held now (link down, character kept). */
@@ -84,7 +88,26 @@ export class ResumeTokens {
       room.onClose(() => this.dropRoom(room));
     }
     players.set(playerId, entry);
+    this.onIssue?.(room, playerId, entry.key);
     return token;
+  }
+
+  /**
+   * A resumed room's player (Room.restorePlayers) whose token was issued before the restart, by its stored key: held
+   * for the grace window from now, then it leaves, as after a dropped link.
+   */
+  adopt(room: Room, playerId: number, key: string): void {
+    if (this.byKey.has(key) || room.closed || !room.hasPlayer(playerId)) return;
+    const entry: Entry = { key, room, playerId, holder: null, timer: null };
+    this.byKey.set(key, entry);
+    let players = this.byRoom.get(room);
+    if (!players) {
+      players = new Map();
+      this.byRoom.set(room, players);
+      room.onClose(() => this.dropRoom(room));
+    }
+    players.set(playerId, entry);
+    this.startGrace(entry);
   }
 
   /**
@@ -95,13 +118,18 @@ export class ResumeTokens {
     const entry = this.byRoom.get(room)?.get(playerId);
     if (!entry || room.closed || !room.detach(playerId)) return false;
     entry.holder = null;
+    this.startGrace(entry);
+    return true;
+  }
+
+  private startGrace(entry: Entry): void {
+    const { room, playerId } = entry;
     entry.timer = this.clock.setTimer(this.graceMs, () => {
       entry.timer = null;
       this.forget(entry, `the resume token expired: the ${Math.round(this.graceMs / 1000)} s grace window ended`);
       this.logger?.info({ room: room.id, playerId }, 'held player left: the reconnect grace window ended');
       room.leave(playerId);
     });
-    return true;
   }
 
   /** The player left for good (bye, kick, removal): its token is spent. */

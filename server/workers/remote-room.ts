@@ -42,7 +42,10 @@ export class RemoteRoom implements HostedRoom {
   private lastStatus: RoomStatus | null = null;
   private readonly opened: RoomInfo;
 
-  constructor(thread: RoomThreadLink, workerIndex: number, opened: RoomInfo) {
+  readonly recordingPath: string | null;
+
+  constructor(thread: RoomThreadLink, workerIndex: number, opened: RoomInfo, recordingPath: string | null = null) {
+    this.recordingPath = recordingPath;
     this.thread = thread;
     this.workerIndex = workerIndex;
     this.id = opened.id;
@@ -67,7 +70,17 @@ export class RemoteRoom implements HostedRoom {
 
   info(): RoomInfo {
     const s = this.lastStatus;
-    return { ...this.opened, clients: this.players.size, tick: this.lastTick, bodies: s ? s.bodies : this.opened.bodies };
+    return {
+      ...this.opened,
+      clients: this.players.size,
+      tick: this.lastTick,
+      bodies: s ? s.bodies : this.opened.bodies,
+      ticksPerSecond: s ? s.ticksPerSecond : this.opened.ticksPerSecond,
+      slow: s ? s.slow : this.opened.slow,
+      tickMsP99: s ? s.tickMsP99 : this.opened.tickMsP99,
+      tickCpuMsP99: s ? s.tickCpuMsP99 : this.opened.tickCpuMsP99,
+      tickGapMsMax: s ? s.tickGapMsMax : this.opened.tickGapMsMax,
+    };
   }
 
   heapUsage(): { usedBytes: number; freeBytes: number } | null {
@@ -120,6 +133,7 @@ export class RemoteRoom implements HostedRoom {
         return null;
       },
       acknowledge: (tick) => thread.queueAck(member, tick),
+      pace: () => ({ ticksPerSecond: this.lastStatus?.ticksPerSecond ?? 0, slow: this.lastStatus?.slow ?? false }),
       setNetMode: (mode) => thread.queueNetMode(member, mode),
       serverTick: () => this.lastTick,
       missedInputTicks: () => {

@@ -9,10 +9,10 @@ export const WORKER_BUDGET_MS_PER_TICK = TICK_MS * 0.75;
 /** Estimated CPU ms per tick of a room that has not ticked yet, by scenario (linear in what it simulates). */
 const ESTIMATES: Readonly<Record<string, (p: Readonly<Record<string, number>>) => number>> = {
   'character-course': () => 0.4,
-  'shape-rain': (p) => 0.2 + (p.count ?? 300) * 0.006,
+  'shape-rain': (p) => 0.3 + (p.count ?? 300) * 0.0025 * ((p.sizeMetres ?? 0.35) / 0.35) ** 2,
   'height-field': (p) => 0.3 + (p.bodyCount ?? 80) * 0.007 + ((p.samplesPerSide ?? 64) / 256) ** 2,
-  'convex-hulls': (p) => 0.2 + (p.count ?? 150) * 0.01,
-  'mesh-terrain': () => 1.5,
+  'convex-hulls': (p) => 0.2 + ((p.count ?? 150) * 0.004 * (p.maxPoints ?? 24)) / 8,
+  'mesh-terrain': (p) => 0.3 + (p.bodyCount ?? 80) * 0.005,
   'pendulum-chain': () => 0.8,
   'terrain-balls': () => 2,
   'cubes-901': () => 2.5,
@@ -30,4 +30,28 @@ export function estimateTickCpuMs(scenario: string, params: Readonly<Record<stri
 /** A room's cost: measured when it has ticked, else its scenario's estimate. */
 export function roomTickCpuMs(room: RemoteRoom): number {
   return room.status?.tickCpuMs ?? estimateTickCpuMs(room.scenarioName, room.params);
+}
+
+/** What placement needs to know of one worker. */
+export interface WorkerHeadroom {
+  worker: number;
+  rooms: number;
+  /** Budget left: the worker's budget minus its rooms' CPU ms per tick. */
+  headroomMs: number;
+}
+
+/**
+ * Where a new room needing `needMs` per tick goes: the worker with the most headroom when that is enough; else a worker
+ * with no room at all (a room heavier than a worker's budget gets a thread of its own and slows only itself); else
+ * nowhere, with the reason for a 503.
+ */
+export function placeRoom(workers: readonly WorkerHeadroom[], needMs: number, scenario: string, budgetMs: number): { worker: number } | { refusal: string } {
+  if (workers.length === 0) return { refusal: 'no room worker is running (one is being restarted); try again shortly' };
+  const best = workers.reduce((a, b) => (b.headroomMs > a.headroomMs ? b : a));
+  if (best.headroomMs >= needMs) return { worker: best.worker };
+  const idle = workers.find((w) => w.rooms === 0);
+  if (idle) return { worker: idle.worker };
+  return {
+    refusal: `no capacity for another ${scenario} room: it needs about ${needMs.toFixed(1)} ms of CPU per tick and the most any room worker has left is ${Math.max(0, best.headroomMs).toFixed(1)} ms (of ${budgetMs.toFixed(1)} ms per tick on each of ${workers.length} workers)`,
+  };
 }

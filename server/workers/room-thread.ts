@@ -79,7 +79,7 @@ export class RoomThread implements RoomThreadLink {
   /** Opens a room in this worker. */
   async open(spec: RoomSpec): Promise<RemoteRoom> {
     const opened = (await this.request({ t: 'open', req: 0, ...spec })) as OpenedRoom;
-    const room = new RemoteRoom(this, this.index, opened.info);
+    const room = new RemoteRoom(this, this.index, opened.info, opened.recordingPath);
     this.rooms.set(room.id, room);
     return room;
   }

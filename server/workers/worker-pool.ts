@@ -6,7 +6,7 @@ import type { Logger } from '../logger.ts';
 import { RoomError } from '../room.ts';
 import type { RoomHost, RoomSpec } from '../room-manager.ts';
 import type { RemoteRoom } from './remote-room.ts';
-import { estimateTickCpuMs, roomTickCpuMs, WORKER_BUDGET_MS_PER_TICK } from './room-cost.ts';
+import { estimateTickCpuMs, placeRoom, roomTickCpuMs, WORKER_BUDGET_MS_PER_TICK } from './room-cost.ts';
 import { RoomThread } from './room-thread.ts';
 import type { WorkerInit, WorkerRoomConfig } from './worker-protocol.ts';
 
@@ -76,21 +76,10 @@ export class WorkerPool implements RoomHost {
   /** Opens a room on the worker with the most headroom; throws RoomError(ServerFull) when none has enough. */
   async open(spec: RoomSpec): Promise<RemoteRoom> {
     if (this.stopped) throw new RoomError(ErrorCode.Internal, 'the server is shutting down');
-    const needMs = estimateTickCpuMs(spec.scenario, spec.params);
-    const loads = this.loads();
-    if (loads.length === 0) throw new RoomError(ErrorCode.ServerFull, 'no room worker is running (one is being restarted); try again shortly');
-    const best = loads.reduce((a, b) => (b.headroomMs > a.headroomMs ? b : a));
-    // A room heavier than a whole worker's budget may still have a worker to itself: it slows only itself.
-    const idle = loads.find((l) => l.rooms === 0);
-    const chosen = best.headroomMs >= needMs ? best : idle;
-    if (!chosen) {
-      throw new RoomError(
-        ErrorCode.ServerFull,
-        `no capacity for another ${spec.scenario} room: it needs about ${needMs.toFixed(1)} ms of CPU per tick and the most any room worker has left is ${Math.max(0, best.headroomMs).toFixed(1)} ms (of ${this.budgetMsPerTick.toFixed(1)} ms per tick on each of ${loads.length} workers)`,
-      );
-    }
-    const thread = this.threads[chosen.worker];
-    if (!thread) throw new RoomError(ErrorCode.ServerFull, `room worker ${chosen.worker} is restarting; try again shortly`);
+    const placed = placeRoom(this.loads(), estimateTickCpuMs(spec.scenario, spec.params), spec.scenario, this.budgetMsPerTick);
+    if ('refusal' in placed) throw new RoomError(ErrorCode.ServerFull, placed.refusal);
+    const thread = this.threads[placed.worker];
+    if (!thread) throw new RoomError(ErrorCode.ServerFull, `room worker ${placed.worker} is restarting; try again shortly`);
     return thread.open(spec);
   }
 

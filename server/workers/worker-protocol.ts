@@ -19,6 +19,8 @@ export interface WorkerRoomConfig {
   /** Record every room's input log into this directory (null: no recording). */
   recordDir: string | null;
   recordHashEveryTicks?: number;
+  /** CPU ms per tick the worker's rooms may use before it lowers its own OS priority. */
+  budgetMsPerTick: number;
   durability?: DurabilityOptions;
   checkpointEverySeconds?: number;
 }
@@ -42,10 +44,16 @@ export interface RoomStatus {
   heap: { usedBytes: number; freeBytes: number } | null;
   /** Ticks run per second over the last window (60 when keeping up, 0 when paused). */
   ticksPerSecond: number;
-  /** Mean CPU milliseconds per tick over the last window (null before the room has ticked). */
+  /** Mean CPU ms of its thread per tick over the last window (null before the room has ticked). */
   tickCpuMs: number | null;
-  /** True while the room cannot keep 60 Hz (ticks given up in the last window). */
+  /** True while the room cannot keep 60 Hz (it gave up ticks within the last 2 s). */
   slow: boolean;
+  /** 99th percentile of its last 600 tick times (ms). */
+  tickMsP99: number | null;
+  /** 99th percentile of the CPU time of its last 600 ticks (ms). */
+  tickCpuMsP99: number | null;
+  /** Longest time between two tick starts among its last 600 ticks (ms). */
+  tickGapMsMax: number | null;
   /** Ticks given up since the room opened. */
   skippedTicks: number;
   /** [playerId, missed input ticks] pairs, flat. */
@@ -82,6 +90,8 @@ export interface MemberTraffic {
 /** What an `open` answers. */
 export interface OpenedRoom {
   info: RoomInfo;
+  /** The room's input log (null: not recording), so the main thread can keep resume keys beside it. */
+  recordingPath: string | null;
 }
 
 /** What an `enter` answers. */

@@ -6,6 +6,7 @@ import { NetMode } from '../../shared/protocol/predict-messages.ts';
 import type { NetModeRequest } from '../net-mode-policy.ts';
 import type { Clock } from '../../shared/clock.ts';
 import { ErrorCode } from '../../shared/protocol/opcodes.ts';
+import { CatchUpBudget } from '../catch-up-budget.ts';
 import { DeliveryKind, type MemberSink, type Seat } from '../hosted-room.ts';
 import { enterRoom } from '../local-seat.ts';
 import type { Logger } from '../logger.ts';
@@ -13,6 +14,7 @@ import type { ServerMetrics } from '../metrics.ts';
 import { openRoom } from '../open-room.ts';
 import { RoomError, type Room } from '../room.ts';
 import type { RoomFactory } from '../room-manager.ts';
+import { OVERLOADED_NICENESS, setThreadNiceness } from './thread-priority.ts';
 import { ByteBatcher, STATUS_INTERVAL_MS, type FromWorker, type RoomStatus, type ToWorker, type WorkerRoomConfig } from './worker-protocol.ts';
 
 /** How a worker posts to the main thread (`transfer`: buffers whose ownership moves with the message). */
@@ -69,7 +71,7 @@ interface MemberEntry {
 interface Window {
   atMs: number;
   ticks: number;
-  busySeconds: number;
+  cpuSeconds: number;
   skipped: number;
   cpuMs: number | null;
 }
@@ -84,6 +86,8 @@ export class WorkerRooms {
   private readonly ticks = new Map<string, number>();
   private flushPending = false;
   private readonly statusTimer: ReturnType<typeof setInterval>;
+  private readonly catchUp = new CatchUpBudget();
+  private overloaded = false;
 
   constructor(opts: WorkerRoomsOptions) {
     this.opts = opts;
@@ -187,6 +191,7 @@ export class WorkerRooms {
           maxCatchUpTicks: config.maxCatchUpTicks,
           maxInputLeadTicks: config.maxInputLeadTicks,
           pauseWhenEmpty: config.pauseWhenEmpty,
+          catchUp: this.catchUp,
         },
       );
       this.rooms.set(id, room);
@@ -202,7 +207,7 @@ export class WorkerRooms {
         this.postInOrder({ t: 'closed', room: id, reason });
       });
       room.start();
-      this.reply(req, { info: room.info() });
+      this.reply(req, { info: room.info(), recordingPath: this.opts.factory.recordingPath?.(id) ?? null });
     } catch (error) {
       this.fail(req, error);
     }
@@ -247,16 +252,29 @@ export class WorkerRooms {
     const now = performance.now();
     const rooms: RoomStatus[] = [];
     for (const room of this.rooms.values()) rooms.push(this.status(room, now));
+    this.adjustPriority(rooms);
     this.opts.post({ t: 'status', rooms, externalBytes: getHeapStatistics().external_memory });
+  }
+
+  // Over budget, the worker's rooms cannot all keep 60 Hz: the worker yields the CPU to the main thread and the other
+  // workers (its rooms slow down and say so) until its load fits again.
+  private adjustPriority(rooms: readonly RoomStatus[]): void {
+    let loadMs = 0;
+    for (const r of rooms) loadMs += r.tickCpuMs ?? 0;
+    const overloaded = loadMs > this.opts.config.budgetMsPerTick;
+    if (overloaded === this.overloaded) return;
+    this.overloaded = overloaded;
+    const failed = setThreadNiceness(overloaded ? OVERLOADED_NICENESS : 0);
+    if (failed !== null) this.opts.logger.warn({ loadMs, overloaded, reason: failed }, 'room worker could not change its thread priority');
+    else this.opts.logger.info({ loadMs: Math.round(loadMs * 10) / 10, budgetMs: this.opts.config.budgetMsPerTick }, overloaded ? 'room worker over its CPU budget: running at the lowest priority' : 'room worker back within its CPU budget: normal priority');
   }
 
   private status(room: Room, now: number): RoomStatus {
     const clock = room.tickClock;
-    const w = this.windows.get(room.id) ?? { atMs: now, ticks: clock.ticksRun, busySeconds: room.busySeconds, skipped: clock.skippedTicks, cpuMs: null };
+    const w = this.windows.get(room.id) ?? { atMs: now, ticks: clock.ticksRun, cpuSeconds: room.cpuSeconds, skipped: clock.skippedTicks, cpuMs: null };
     const ran = clock.ticksRun - w.ticks;
-    const elapsedMs = now - w.atMs;
-    const cpuMs = ran > 0 ? ((room.busySeconds - w.busySeconds) * 1000) / ran : w.cpuMs;
-    this.windows.set(room.id, { atMs: now, ticks: clock.ticksRun, busySeconds: room.busySeconds, skipped: clock.skippedTicks, cpuMs });
+    const cpuMs = ran > 0 ? ((room.cpuSeconds - w.cpuSeconds) * 1000) / ran : w.cpuMs;
+    this.windows.set(room.id, { atMs: now, ticks: clock.ticksRun, cpuSeconds: room.cpuSeconds, skipped: clock.skippedTicks, cpuMs });
     const missed: number[] = [];
     const info = room.info();
     for (const playerId of room.playerIds()) missed.push(playerId, room.missedInputTicks(playerId));
@@ -266,9 +284,12 @@ export class WorkerRooms {
       clients: info.clients,
       bodies: info.bodies,
       heap: room.heapUsage(),
-      ticksPerSecond: elapsedMs > 0 ? (ran * 1000) / elapsedMs : 0,
+      ticksPerSecond: info.ticksPerSecond,
       tickCpuMs: cpuMs,
-      slow: clock.skippedTicks > w.skipped,
+      slow: info.slow,
+      tickMsP99: info.tickMsP99,
+      tickCpuMsP99: info.tickCpuMsP99,
+      tickGapMsMax: info.tickGapMsMax,
       skippedTicks: clock.skippedTicks,
       missedInputTicks: missed,
     };

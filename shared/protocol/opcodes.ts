@@ -7,9 +7,10 @@
  * 3: predict mode: the welcome's netMode, checkpoint and record messages, resync and netMode requests.
  * 4: the game API: game input values in input commands, the welcome's game schema, game state in snapshots, game
  *    messages (docs/protocol.md, docs/game-api.md).
- * 5: the bye reason `room-moved` (and error code) with the hosting server's URL as the bye's fourth element.
+ * 5: the pong's room pace (roomTicksPerSecond, roomSlow).
+ * 6: the bye reason `room-moved` (and error code) with the hosting server's URL as the bye's fourth element.
  */
-export const PROTOCOL_VERSION = 5;
+export const PROTOCOL_VERSION = 6;
 
 /** Opcodes of messages a client sends to the server (1–15). */
 export const ClientOpcode = {

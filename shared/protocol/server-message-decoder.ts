@@ -198,13 +198,15 @@ function decode(value: unknown): ServerMessage {
       arity(2, 'welcome');
       return decodeWelcome(value[1]);
     case ServerOpcode.Pong:
-      arity(5, 'pong');
+      arity(7, 'pong');
       return {
         type: 'pong',
         clientTimeMs: num(value[1], 'pong.clientTimeMs'),
         serverTick: int(value[2], 'pong.serverTick'),
         serverTimeMs: num(value[3], 'pong.serverTimeMs'),
         missedInputTicks: int(value[4], 'pong.missedInputTicks'),
+        roomTicksPerSecond: int(value[5], 'pong.roomTicksPerSecond'),
+        roomSlow: bool(value[6], 'pong.roomSlow'),
       };
     case ServerOpcode.Snapshot: {
       need(value.length === 3 || value.length === 4, `snapshot must have 2 or 3 fields, got ${value.length - 1}`);

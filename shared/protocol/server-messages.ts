@@ -57,6 +57,10 @@ export interface PongMessage {
   serverTimeMs: number;
   /** Ticks so far at which this player's input had not arrived and the server repeated the previous one. */
   missedInputTicks: number;
+  /** Ticks the player's room ran over the last second, rounded (60 when it keeps up). */
+  roomTicksPerSecond: number;
+  /** True while the room cannot keep the tick rate and runs slowed (only that room). */
+  roomSlow: boolean;
 }
 
 /** One snapshot: the bit-packed frame plus descriptors of newly spawned bodies the client may not have. */

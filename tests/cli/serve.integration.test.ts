@@ -50,7 +50,7 @@ describe('serve (CLI process)', () => {
       expect(b.ofType('bye')[0]?.reason).toBe(ByeReason.ServerShutdown);
       const lines = stderr.trim().split('\n').map((l) => JSON.parse(l) as { msg: string });
       expect(lines.map((l) => l.msg)).toEqual(expect.arrayContaining(['recording room', 'player joined', 'shutting down', 'recording complete', 'shutdown complete']));
-      const files = readdirSync(dir);
+      const files = readdirSync(dir).filter((f) => f.endsWith('.taoslog')); // resume keys sit beside each log
       expect(files).toHaveLength(1);
       const report = await replayLog(join(dir, files[0]));
       expect(report).toMatchObject({ status: 'ok', log: 'complete' });

@@ -209,6 +209,30 @@ describe('client', () => {
     expect(closed).toMatch(/^unreachable: gave up after 3 attempts/);
   });
 
+  it('tells a dropped link from a server that went away: a retry that finds nothing listening', () => {
+    const w = world();
+    const client = w.open({ reconnect: { baseDelayMs: 100 } });
+    w.clock.advance(500);
+    const seen: boolean[] = [];
+    client.on('reconnecting', (r) => seen.push(r.serverRestarting));
+    w.net.dropAll(); // a plain drop: the server is still there
+    w.clock.advance(500);
+    expect(client.state).toBe('connected');
+    w.net.unlisten(URL);
+    w.net.dropAll(); // the server process is gone: the next attempt finds nothing listening
+    w.clock.advance(350);
+    const restarted = new FakeServer(w.clock, w.net, URL); // a new process on the same address
+    restarted.start();
+    w.clock.advance(1000);
+    expect(client.state).toBe('connected');
+    // drop; drop (the link had worked); two attempts that found nothing listening
+    expect(seen).toEqual([false, false, true, true]);
+    w.net.dropAll(); // back to a plain drop: the welcome cleared the restart
+    w.clock.advance(1);
+    expect(seen.at(-1)).toBe(false);
+    client.close();
+  });
+
   it('stays closed after a kick and reports the reason', async () => {
     const w = world();
     const client = w.open();

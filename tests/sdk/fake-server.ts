@@ -239,7 +239,7 @@ export class FakeServer {
         s.encoder.acknowledge(m.tick);
         return;
       case 'ping':
-        this.send(s, { type: 'pong', clientTimeMs: m.clientTimeMs, serverTick: this.tick, serverTimeMs: this.clock.nowMs() + SERVER_CLOCK_OFFSET_MS, missedInputTicks: s.missed + this.extraMissed });
+        this.send(s, { type: 'pong', clientTimeMs: m.clientTimeMs, serverTick: this.tick, serverTimeMs: this.clock.nowMs() + SERVER_CLOCK_OFFSET_MS, missedInputTicks: s.missed + this.extraMissed, roomTicksPerSecond: 60, roomSlow: false });
         return;
       case 'bye':
         s.byeReceived = true;

@@ -76,7 +76,7 @@ describe('canonical inputs (real server)', () => {
     } finally {
       await server.close('test over');
     }
-    const [file] = readdirSync(dir);
+    const [file] = readdirSync(dir).filter((f) => f.endsWith('.taoslog')); // resume keys sit beside each log
     const report = await replayLog(join(dir, file));
     expect(report.status, `seed ${seed}: ${JSON.stringify(report.divergence)}`).toBe('ok');
     expect(report.log).toBe('complete');

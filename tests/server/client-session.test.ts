@@ -93,6 +93,20 @@ describe('ClientSession', () => {
     }
   });
 
+  it("answers a ping with the room's tick, the player's missed inputs and the room's pace", async () => {
+    h = await startHarness({ scenarios: [stripScenario] });
+    const c = await h.join('ann');
+    for (let i = 0; i < 150; i++) {
+      h.ticks(1);
+      await h.settle(() => true, 1);
+    }
+    c.send({ type: 'ping', clientTimeMs: 5 });
+    await h.settle(() => c.ofType('pong').length > 0);
+    const pong = c.ofType('pong')[0];
+    expect(pong).toMatchObject({ clientTimeMs: 5, serverTick: h.room().sim.tick, roomTicksPerSecond: 60, roomSlow: false });
+    expect(pong.missedInputTicks).toBeGreaterThan(0);
+  });
+
   it('refuses input and acks before the welcome', async () => {
     h = await startHarness({ scenarios: [stripScenario] });
     const c = h.connect();

@@ -15,7 +15,7 @@ afterEach(async () => {
   server = null;
 });
 
-const room: RoomInfo = { id: 'default', scenario: 's', clients: 1, tick: 42, bodies: 7, params: {}, netMode: 'snapshot' };
+const room: RoomInfo = { id: 'default', scenario: 's', clients: 1, tick: 42, bodies: 7, params: {}, netMode: 'snapshot', ticksPerSecond: 60, slow: false, tickMsP99: 0.5, tickCpuMsP99: 0.4, tickGapMsMax: 18 };
 
 async function serve(over: Partial<HttpApi> = {}, onError?: (error: unknown) => void): Promise<string> {
   const api: HttpApi = {

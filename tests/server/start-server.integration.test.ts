@@ -135,7 +135,7 @@ describe('startServer recording (real sockets)', () => {
     clearInterval(timer);
     await server.close('test over');
     server = null;
-    const files = readdirSync(dir);
+    const files = readdirSync(dir).filter((f) => f.endsWith('.taoslog')); // resume keys sit beside each log
     expect(files).toHaveLength(1);
     const report = await replayLog(join(dir, files[0]), { collectHashes: true });
     expect(report.status).toBe('ok');
@@ -166,7 +166,7 @@ describe('startServer recording (real sockets)', () => {
     }
     await server.close('test over');
     server = null;
-    const files = readdirSync(dir);
+    const files = readdirSync(dir).filter((f) => f.endsWith('.taoslog')); // resume keys sit beside each log
     expect(files).toHaveLength(1);
     const report = await replayLog(join(dir, files[0]), { collectHashes: true });
     expect(report.status).toBe('ok');

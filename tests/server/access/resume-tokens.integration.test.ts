@@ -122,7 +122,7 @@ describe('resume over real sockets', () => {
     bob.close();
     await server.close('test over');
     server = null;
-    const report = await replayLog(join(dir, readdirSync(dir)[0]));
+    const report = await replayLog(join(dir, readdirSync(dir).filter((f) => f.endsWith('.taoslog'))[0]));
     expect(report.status).toBe('ok');
     expect(report.log).toBe('complete');
     expect(report.ticks).toBe(records.at(-1)!.tick + 1);

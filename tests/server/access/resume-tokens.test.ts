@@ -84,7 +84,7 @@ describe('resume tokens (in-process server)', () => {
     const finalTick = h.room().sim.tick;
     await h.close();
     h = null;
-    const report = await replayLog(join(dir, readdirSync(dir)[0]));
+    const report = await replayLog(join(dir, readdirSync(dir).filter((f) => f.endsWith('.taoslog'))[0]));
     expect(report.status).toBe('ok');
     expect(report.ticks).toBe(finalTick);
   });

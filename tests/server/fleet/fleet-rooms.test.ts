@@ -5,7 +5,7 @@ import { fleetRooms, movedAnswer } from '../../../server/fleet/fleet-rooms.ts';
 import { RoomMovedError, webSocketUrl } from '../../../server/fleet/room-moved.ts';
 import type { RoomInfo } from '../../../server/room.ts';
 
-const room = (id: string, clients = 0): RoomInfo => ({ id, scenario: 'character-course', clients, tick: 0, bodies: 1, params: {}, netMode: 'snapshot' });
+const room = (id: string, clients = 0): RoomInfo => ({ id, scenario: 'character-course', clients, tick: 0, bodies: 1, params: {}, netMode: 'snapshot', ticksPerSecond: 60, slow: false, tickMsP99: 1, tickCpuMsP99: 1, tickGapMsMax: 17 });
 const member = (id: string, url: string, rooms: RoomInfo[]): MemberRecord => ({ id, url, wsUrl: webSocketUrl(url), capacity: { rooms: 6, connections: 256 }, players: 0, rooms, startedAt: '' });
 
 describe('fleetRooms', () => {

@@ -1,12 +1,13 @@
 // Integration tests for rooms in worker threads (server/workers/): a worker that dies closes only its own rooms with a
-// bye that says why while the server keeps serving and replaces it, and closing rooms gives their WASM memory back.
+// bye that says why while the server keeps serving and replaces it, resume tokens work across the thread boundary,
+// and closing rooms gives their WASM memory back.
 import { join } from 'node:path';
 import { tmpdir } from 'node:os';
 import { afterEach, describe, expect, it } from 'vitest';
 import { silentLogger } from '../../../server/logger.ts';
 import { createMetrics } from '../../../server/metrics.ts';
 import { startServer, type RunningServer } from '../../../server/start-server.ts';
-import { ByeReason } from '../../../shared/protocol/index.ts';
+import { ByeReason, PROTOCOL_VERSION } from '../../../shared/protocol/index.ts';
 import { scenarioList } from '../harness.ts';
 import { emptyScenario, stripScenario } from '../test-scenarios.ts';
 import { WsTestClient } from '../ws-client.ts';
@@ -74,6 +75,42 @@ describe('room workers', () => {
     const back = await WsTestClient.join(server.wsUrl, 'back', 'arena');
     clients.push(back);
     await back.waitFor(() => back.frames.length > 2, 5000, 'snapshots from the reopened arena');
+  });
+
+  it('opens the default room again when its worker dies', async () => {
+    server = await start(2);
+    const workers = server.game.workers!;
+    const calm = await WsTestClient.join(server.wsUrl, 'calm');
+    clients.push(calm);
+    await workers.workers().find((t) => t.rooms.has('default'))!.worker.terminate();
+    await calm.waitFor(() => calm.closed !== null, 5000, 'the default room player to be disconnected');
+    expect(calm.ofType('bye')[0]?.message).toMatch(/worker thread stopped/);
+    await waitUntil('the default room to reopen', 10_000, () => server!.game.rooms.get('default') !== undefined);
+    const again = await WsTestClient.join(server.wsUrl, 'again');
+    clients.push(again);
+    expect(again.welcome?.roomId).toBe('default');
+    await again.waitFor(() => again.frames.length > 2, 5000, 'snapshots from the reopened default room');
+  });
+
+  it('holds a player whose link was cut and gives it back to a connection with its resume token', async () => {
+    server = await start(2);
+    const first = await WsTestClient.join(server.wsUrl, 'ann');
+    clients.push(first);
+    await first.waitFor(() => first.frames.length > 2, 5000, 'snapshots');
+    const { playerId, resumeToken } = first.welcome!;
+    expect(resumeToken).toEqual(expect.any(String));
+    first.ws.terminate(); // no close frame: the server holds the player
+    await waitUntil('the server to hold the player', 5000, async () => {
+      const list = (await (await fetch(`${server!.url}api/rooms`)).json()) as { rooms: Array<{ id: string; clients: number }> };
+      return list.rooms[0].clients === 1 && server!.game.sessionCount() === 0;
+    });
+    const back = await WsTestClient.connect(server.wsUrl);
+    clients.push(back);
+    back.send({ type: 'hello', version: PROTOCOL_VERSION, name: 'ann', room: null, resumeToken: resumeToken! });
+    await back.waitFor(() => back.welcome !== null || back.closed !== null, 5000, 'the welcome');
+    expect(back.welcome).toMatchObject({ playerId, resumed: true, roomId: 'default' });
+    await back.waitFor(() => back.frames.some((f) => Array.from(f.playerIds).includes(playerId)), 5000, 'the same character in snapshots');
+    expect(back.ofType('error')).toEqual([]);
   });
 
   it('gives back the WASM memory of rooms closed in a worker', async () => {

@@ -31,7 +31,7 @@ describe('codec', () => {
     const messages: ServerMessage[] = [
       sampleWelcome,
       { ...sampleWelcome, resumeToken: null, resumeGraceMs: 0, resumed: true },
-      { type: 'pong', clientTimeMs: 99.5, serverTick: 77, serverTimeMs: 123456.25, missedInputTicks: 2 },
+      { type: 'pong', clientTimeMs: 99.5, serverTick: 77, serverTimeMs: 123456.25, missedInputTicks: 2, roomTicksPerSecond: 43, roomSlow: true },
       { type: 'snapshot', bytes: new Uint8Array([1, 2, 3, 250]), descriptors: [] },
       { type: 'snapshot', bytes: new Uint8Array([9]), descriptors: sampleWelcome.dynamicBodies },
       {

@@ -24,9 +24,11 @@ describe('server-message-decoder', () => {
   });
 
   it('names the bad field of a pong, snapshot, error or bye', () => {
-    expect(errorOf(packValue([ServerOpcode.Pong, 1, -1, 2, 0]))).toMatch(/pong.serverTick/);
-    expect(errorOf(packValue([ServerOpcode.Pong, 1, 2, Number.NaN, 0]))).toMatch(/pong.serverTimeMs/);
-    expect(errorOf(packValue([ServerOpcode.Pong, 1, 2, 3]))).toMatch(/pong must have 4 field/);
+    expect(errorOf(packValue([ServerOpcode.Pong, 1, -1, 2, 0, 60, false]))).toMatch(/pong.serverTick/);
+    expect(errorOf(packValue([ServerOpcode.Pong, 1, 2, Number.NaN, 0, 60, false]))).toMatch(/pong.serverTimeMs/);
+    expect(errorOf(packValue([ServerOpcode.Pong, 1, 2, 3]))).toMatch(/pong must have 6 field/);
+    expect(errorOf(packValue([ServerOpcode.Pong, 1, 2, 3, 0, -1, false]))).toMatch(/pong.roomTicksPerSecond/);
+    expect(errorOf(packValue([ServerOpcode.Pong, 1, 2, 3, 0, 60, 1]))).toMatch(/pong.roomSlow/);
     expect(errorOf(packValue([ServerOpcode.Snapshot, 'bytes', null]))).toMatch(/snapshot.bytes must be binary/);
     expect(errorOf(packValue([ServerOpcode.Snapshot, new Uint8Array(1), [[], [[1]]]]))).toMatch(/snapshot.descriptors.rows\[0\]/);
     expect(errorOf(packValue([ServerOpcode.Error, 5, 'x']))).toMatch(/error.code/);
