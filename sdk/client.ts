@@ -310,10 +310,11 @@ export class NetClient {
 
   /**
    * The predicted world (smoothed poses of every body and character) while this client predicts, else null: draw
-   * sample() then. The own player's newest input is already in it.
+   * sample() then. Call it once per drawn frame: it first runs the input loop's step for now, so the own player's
+   * newest input is in the frame (its tick came due) whatever the timers' phase.
    */
   predicted(): PredictedFrame | null {
-    return this.connectedSession()?.prediction?.frame() ?? null;
+    return this.connectedSession()?.predictedFrame() ?? null;
   }
 
   /** Stops predicting on this connection and goes back to interpolated snapshots (stats().prediction says why). */

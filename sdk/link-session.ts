@@ -16,7 +16,7 @@ import type { BodyDescriptor, SimEvent } from '../shared/sim/types.ts';
 import { ClockSync } from './clock-sync.ts';
 import { InputLead, InputSender, type InputLeadOptions } from './input-sender.ts';
 import { InterpolationBuffer, type InterpolatedFrame, type InterpolationOptions } from './interpolation.ts';
-import { PredictSession, type PredictOptions } from './prediction/predict-session.ts';
+import { PredictSession, type PredictedFrame, type PredictOptions } from './prediction/predict-session.ts';
 import type { Transport, TransportFactory } from './transport.ts';
 
 /** The input pump's period, in ticks. */
@@ -363,6 +363,22 @@ export class LinkSession {
 
   /** The input loop: runs twice per tick, sends when the target tick advanced. */
   private pump(): void {
+    this.inputStep();
+    this.schedule(this.sync!.tickMs * PUMP_SPACING_TICKS, () => this.pump());
+  }
+
+  /**
+   * A predicting client's frame: the input loop's step now (fix and send the commands of ticks that came due, run the
+   * local simulation to them), so the drawn world holds the newest own command whatever the timers' phase.
+   */
+  predictedFrame(): PredictedFrame | null {
+    const p = this.predictSession;
+    if (!p || !p.active || this.ended || this.closing) return null;
+    this.inputStep();
+    return p.frame();
+  }
+
+  private inputStep(): void {
     const sync = this.sync!;
     const lead = this.lead!;
     const now = this.o.clock.nowMs();
@@ -381,7 +397,6 @@ export class LinkSession {
       // The local simulation runs to the newest tick the sender fixed: the own command of that tick is in it.
       this.predictSession?.advance(this.sender.newestTick + 1, (t) => this.sender.commandFor(t));
     }
-    this.schedule(sync.tickMs * PUMP_SPACING_TICKS, () => this.pump());
   }
 
   private onSnapshot(bytes: Uint8Array, descriptors: BodyDescriptor[], sizeBytes: number, now: number): void {

@@ -27,6 +27,7 @@ import { RateLimiter, type RateLimit } from './rate-limiter.ts';
 import { RoomMovedError } from './fleet/room-moved.ts';
 import { RoomError } from './room.ts';
 import type { RoomManager } from './room-manager.ts';
+import { LinkStats, snapshotTick } from './monitor/link-stats.ts';
 
 /** Per-client limits. */
 export interface SessionLimits {
@@ -102,6 +103,8 @@ export class ClientSession implements MemberSink, ResumeHolder {
   readonly id = nextSessionId++;
   readonly conn: ServerConnection;
   readonly stats: SessionStats = { messagesReceived: 0, badMessages: 0, errorsSent: 0, snapshotsSent: 0, snapshotsSkipped: 0, snapshotBytes: 0, bytesSent: 0, inputsLate: 0, inputsTooFar: 0 };
+  /** Name, bytes in, input lead and RTT, for the monitor. */
+  readonly link = new LinkStats();
   private readonly ctx: SessionContext;
   private readonly messageLimiter: RateLimiter;
   private readonly inputLimiter: RateLimiter;
@@ -141,6 +144,11 @@ export class ClientSession implements MemberSink, ResumeHolder {
     return this.playerId;
   }
 
+  /** Ticks the room simulated with this player's previous input repeated (none had arrived); 0 before joining. */
+  missedInputTicks(): number {
+    return this.seat ? this.seat.missedInputTicks() : 0;
+  }
+
   /** The room once joined. */
   get currentRoom(): HostedRoom | null {
     return this.room;
@@ -165,6 +173,7 @@ export class ClientSession implements MemberSink, ResumeHolder {
     this.stats.messagesReceived++;
     m.messagesReceived.inc();
     m.bytesReceived.inc(data.length);
+    this.link.bytesIn += data.length;
     if (!this.messageLimiter.take()) {
       this.end(ByeReason.Flood, `more than ${this.ctx.limits.messages.perSecond} messages per second`, CloseCode.PolicyViolation);
       return;
@@ -223,6 +232,7 @@ export class ClientSession implements MemberSink, ResumeHolder {
           return;
         }
         if (fit.clamped > 0) this.ctx.metrics.inputsClamped.inc(fit.clamped);
+        if (fit.commands.length > 0) this.link.inputArrived(msg.firstTick + fit.commands.length - 1, this.seat.serverTick());
         for (let i = 0; i < fit.commands.length; i++) {
           const r = this.seat.offerInput(msg.firstTick + i, fit.commands[i]);
           if (r === OfferResult.Late) this.stats.inputsLate++;
@@ -236,6 +246,7 @@ export class ClientSession implements MemberSink, ResumeHolder {
           return;
         }
         this.seat.acknowledge(msg.tick);
+        this.link.acked(msg.tick, this.ctx.clock.nowMs());
         return;
       case 'ping': {
         const seat = this.room ? this.seat : null;
@@ -315,6 +326,7 @@ export class ClientSession implements MemberSink, ResumeHolder {
     if (this.helloTimer) this.ctx.clock.clearTimer(this.helloTimer);
     this.helloTimer = null;
     this.conn.helloed?.();
+    this.link.name = hello.name;
     if (hello.resumeToken !== undefined) {
       const resume = this.ctx.access.resume;
       const claim = resume ? resume.claim(hello.resumeToken, hello.room) : ({ ok: false, reason: 'this server does not resume players' } as const);
@@ -442,6 +454,8 @@ export class ClientSession implements MemberSink, ResumeHolder {
     if (kind === DeliveryKind.Snapshot && size > 0) {
       this.stats.snapshotsSent++;
       this.stats.snapshotBytes += size;
+      const tick = snapshotTick(bytes);
+      if (tick !== null) this.link.snapshotSent(tick, this.ctx.clock.nowMs());
     }
   }
 

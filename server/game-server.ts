@@ -141,6 +141,11 @@ export class GameServer {
     return server;
   }
 
+  /** The open sessions (a copy), for the monitor. */
+  sessionList(): ClientSession[] {
+    return [...this.sessions];
+  }
+
   /** The Prometheus exposition of this thread's metrics summed with every room worker's. */
   async renderMetrics(): Promise<{ body: string; contentType: string }> {
     return renderMergedMetrics(this.metrics, this.workers ? await this.workers.metricsJson() : []);

@@ -13,6 +13,7 @@ import type { CreateRoomRequest, HttpApi } from './http-server.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
 import type { HostedRoom } from './hosted-room.ts';
+import type { MonitorRoutes } from './monitor/monitor-routes.ts';
 import { RoomError, type RoomInfo } from './room.ts';
 import type { ScenarioSource } from './room-factory.ts';
 import { DEFAULT_ROOM_ID, isRoomId } from './room-manager.ts';
@@ -26,6 +27,8 @@ export interface HttpApiOptions {
   /** Access control: the guard every request passes first, and the seat tokens the seats route issues. */
   access: ServerAccess;
   staticFiles(req: IncomingMessage, res: ServerResponse): Promise<boolean>;
+  /** The monitor's routes; absent: no /monitor. */
+  monitor?: MonitorRoutes;
   /** With a fleet (`--redis`): lists every server's rooms and answers for rooms hosted elsewhere. */
   fleet?: FleetDirectory;
 }
@@ -101,6 +104,14 @@ export function createHttpApi(opts: HttpApiOptions): HttpApi {
       opts.logger.info({ room: id, clients: info.clients }, 'room closed over HTTP');
       return info;
     },
+    roomPlayers(roomId) {
+      if (!game.rooms.get(roomId)) throw new HttpError(404, HttpErrorCode.RoomNotFound, `no room ${quote(roomId)} is open`);
+      return game
+        .sessionList()
+        .filter((s) => !s.ended && s.currentRoom?.id === roomId)
+        .map((s) => ({ playerId: s.player, name: s.link.name }))
+        .sort((a, b) => a.playerId - b.playerId);
+    },
     reserveSeat(roomId, req) {
       const elsewhere = !game.rooms.get(roomId) && opts.fleet ? cachedHost(opts.fleet, roomId) : null;
       if (elsewhere) throw movedAnswer(new RoomMovedError(roomId, elsewhere));
@@ -111,5 +122,6 @@ export function createHttpApi(opts: HttpApiOptions): HttpApi {
     metrics: () => game.renderMetrics(),
     authorize: opts.access.authorize,
     staticFiles: (req, res) => opts.staticFiles(req, res),
+    monitor: opts.monitor,
   };
 }

@@ -1,4 +1,5 @@
-// The HTTP half of the server's single port: /healthz, /metrics, the rooms and seats API and the static client files.
+// The HTTP half of the server's single port: /healthz, /metrics, the rooms and seats API, the monitor and the static
+// client files.
 // Routing and request parsing only; what the answers contain (and who may ask) comes from the HttpApi passed in.
 // Every refusal is answered as `{error: code, message}` (server/http-errors.ts, server/access/refusal.ts).
 import { createServer, type IncomingMessage, type RequestListener, type Server, type ServerResponse } from 'node:http';
@@ -7,6 +8,7 @@ import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import { sendRefusal, type Refusal } from './access/refusal.ts';
 import { parseSeatRequest, type SeatAnswer, type SeatRequest } from './access/seat-request.ts';
 import { HttpError, HttpErrorCode, sendError, sendJson } from './http-errors.ts';
+import type { MonitorRoutes } from './monitor/monitor-routes.ts';
 import { isNetModeRequest, type NetModeRequest } from './net-mode-policy.ts';
 import { RoomError, type RoomInfo } from './room.ts';
 
@@ -31,10 +33,14 @@ export interface HttpApi {
   createRoom(req: CreateRoomRequest): Promise<{ room: RoomInfo; created: boolean }>;
   /** DELETE /api/rooms/:id: closes the room (its players get a bye saying so); resolves with its last summary. */
   deleteRoom(id: string): Promise<RoomInfo>;
+  /** GET /api/rooms/ID/players: the connected players' ids and display names (what the room's feed shows anyway). */
+  roomPlayers?(roomId: string): Array<{ playerId: number; name: string }>;
   /** POST /api/rooms/ID/seats {ttlSeconds?}: a seat token for that room (an HttpError or RoomError on refusal). */
   reserveSeat(roomId: string, req: SeatRequest): SeatAnswer;
   /** GET /metrics. */
   metrics(): Promise<{ body: string; contentType: string }>;
+  /** GET /monitor and its data and actions (server/monitor/monitor-routes.ts); absent: no monitor. */
+  monitor?: MonitorRoutes;
   /** Access rules, checked before any route: a refusal is the whole answer. */
   authorize?(req: IncomingMessage, method: string, path: string): Refusal | null;
   /** Anything else: static files; resolves true when it answered. */
@@ -194,6 +200,12 @@ async function route(api: HttpApi, req: IncomingMessage, res: ServerResponse): P
     sendJson(res, 201, { seat: api.reserveSeat(id, request) });
     return;
   }
+  const playersMatch = api.roomPlayers ? /^\/api\/rooms\/([^/]+)\/players$/.exec(path) : null;
+  if (playersMatch && api.roomPlayers) {
+    if (!isGet) throw notAllowed(method, path, 'GET, HEAD');
+    sendJson(res, 200, { players: api.roomPlayers(decodeSegment(playersMatch[1])) });
+    return;
+  }
   const roomMatch = /^\/api\/rooms\/([^/]+)$/.exec(path);
   if (roomMatch) {
     const id = decodeSegment(roomMatch[1]);
@@ -205,6 +217,10 @@ async function route(api: HttpApi, req: IncomingMessage, res: ServerResponse): P
       sendJson(res, 200, { room: await api.deleteRoom(id) });
     } else throw notAllowed(method, path, 'GET, HEAD, DELETE');
     return;
+  }
+  if (api.monitor && (path === '/monitor' || path.startsWith('/monitor/'))) {
+    if (await api.monitor(req, res, method, path)) return;
+    throw new HttpError(404, HttpErrorCode.NotFound, `no monitor route ${path.slice(0, 100)} (see /monitor, /monitor/state, /monitor/events)`);
   }
   if (path.startsWith('/api/')) throw new HttpError(404, HttpErrorCode.NotFound, `no API route ${path.slice(0, 100)} (see /api/rooms, /api/scenarios)`);
   if (await api.staticFiles(req, res)) return;

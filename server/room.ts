@@ -21,6 +21,7 @@ import type { ServerMetrics } from './metrics.ts';
 import { RoomPace, type PaceReport } from './room-pace.ts';
 import { SnapshotFanOut } from './snapshot-fan-out.ts';
 import { TickClock } from './tick-clock.ts';
+import { TickTimes } from './monitor/tick-times.ts';
 
 import type { RoomMember, RoomRecorder, RoomSimulation, WorldFrame } from './room-contracts.ts';
 
@@ -124,6 +125,8 @@ export class Room implements HostedRoom {
   readonly tickClock: TickClock;
   /** The members' shared snapshot and event work (format, quantized frame, framed messages). */
   readonly snapshots: SnapshotFanOut;
+  /** Recent tick wall times and the tick count, for the monitor. */
+  readonly tickTimes = new TickTimes();
   /** How the room serves its members. */
   readonly netMode: NetMode;
   /** The mode the room was asked for ('auto' lets the cost estimate choose). */
@@ -446,6 +449,7 @@ export class Room implements HostedRoom {
     this.cpuSecondsTotal += cpuSeconds;
     this.paceMeter.ticked(seconds * 1000, cpuSeconds * 1000);
     m.tickDuration.observe(seconds);
+    this.tickTimes.record(seconds * 1000);
     if (seconds > 1 / TICK_RATE_HZ) m.tickOverruns.inc();
   }
 

@@ -31,6 +31,8 @@ import { checkReplayLog, withReplayLog } from './replay-log.ts';
 import { createStaticHandler } from './static-files.ts';
 import { attachWsGateway } from './ws-gateway.ts';
 import { WORKER_BUDGET_MS_PER_TICK } from './workers/room-cost.ts';
+import { createMonitorRoutes } from './monitor/monitor-routes.ts';
+import { ServerMonitor } from './monitor/server-monitor.ts';
 import { WorkerPool } from './workers/worker-pool.ts';
 
 /** Where the built browser client is served from by default. */
@@ -218,8 +220,9 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   const pageFiles = opts.pageDir === undefined ? null : createStaticHandler(opts.pageDir, true);
   const clientFiles = pageFiles === null ? stockFiles : async (req: IncomingMessage, res: ServerResponse) => (await pageFiles(req, res)) || stockFiles(req, res);
   const staticFiles = opts.replayFile ? withReplayLog(opts.replayFile, clientFiles) : clientFiles;
+  const monitor = new ServerMonitor(game);
   const http = createHttpServer(
-    createHttpApi({ game, scenarios, metrics, logger, access, staticFiles, fleet: fleet ?? undefined }),
+    createHttpApi({ game, scenarios, metrics, logger, access, staticFiles, monitor: createMonitorRoutes(monitor), fleet: fleet ?? undefined }),
     (error) => logger.error({ err: error }, 'HTTP request failed'),
     opts.tls,
   );
@@ -254,6 +257,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
       });
     });
   } catch (error) {
+    monitor.close();
     await game.close('failed to start');
     await gateway.close(0);
     await fleet?.close();
@@ -289,6 +293,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     whenClosed: () => closed,
     close(reason = 'server shutting down') {
       closing ??= (async () => {
+        monitor.close();
         await game.close(reason);
         await agones?.shutdown(reason);
         await fleet?.close();

@@ -8,9 +8,12 @@ import { KeyToMotionMeter } from './motion-meter.ts';
 import type { Hud } from './hud.ts';
 import type { InputController } from './input-controller.ts';
 import { NetHistory } from './net-history.ts';
+import { contentBox } from './scene-extent.ts';
 import type { NetSession, SessionWelcome } from './session-types.ts';
 import type { SnapshotView } from '../../shared/protocol/snapshot-frame.ts';
 import type { WorldView } from './world-view.ts';
+import type { Decorations } from './decorations.ts';
+import type { NameTags } from './name-tags.ts';
 
 /** What the loop reports to the page each frame (and the test hook reads). */
 export interface LoopState {
@@ -39,20 +42,29 @@ export class GameLoop {
 
   private readonly renderer: Renderer;
   private readonly world: WorldView;
+  private readonly decorations: Decorations | null;
+  private readonly tags: NameTags | null;
+  /** Per-frame page extras (the scenario's objective). */
+  private readonly onFrame: ((view: SnapshotView | null) => void) | null;
   private readonly session: NetSession;
   private readonly input: InputController;
   private readonly hud: Hud;
   private readonly welcome: SessionWelcome;
   private readonly follow = new FollowCamera();
   private readonly orbit = new OrbitCamera();
+  /** Whether the orbit camera has been fitted to the scene's content since it was last switched to. */
+  private orbitFitted = false;
   private rafId = 0;
   private inputTimer: ReturnType<typeof setInterval> | null = null;
   private lastFrameMs: number | null = null;
   private stopped = false;
   private readonly onFatal: (err: Error) => void;
 
-  constructor(parts: { renderer: Renderer; world: WorldView; session: NetSession; input: InputController; hud: Hud; welcome: SessionWelcome; onFatal: (err: Error) => void }) {
+  constructor(parts: { renderer: Renderer; world: WorldView; decorations?: Decorations; tags?: NameTags; onFrame?: (view: SnapshotView | null) => void; session: NetSession; input: InputController; hud: Hud; welcome: SessionWelcome; onFatal: (err: Error) => void }) {
     this.renderer = parts.renderer;
+    this.decorations = parts.decorations ?? null;
+    this.tags = parts.tags ?? null;
+    this.onFrame = parts.onFrame ?? null;
     this.world = parts.world;
     this.session = parts.session;
     this.input = parts.input;
@@ -114,6 +126,7 @@ export class GameLoop {
   private draw(nowMs: number, dt: number): void {
     const f = this.session.frame(nowMs);
     this.world.apply(f.view, f.renderTick);
+    this.decorations?.update(f.view, nowMs);
     this.history.recordBufferDepth(nowMs, f.bufferDepth);
     const s = this.state;
     s.renderTick = f.renderTick;
@@ -125,14 +138,22 @@ export class GameLoop {
     if (mine && !this.orbitOnly) {
       camera = this.follow.view([mine.position.x, mine.position.y, mine.position.z], this.input.yawRadians, this.input.pitchRadians, dt, this.world.occluders);
       s.following = true;
+      this.orbitFitted = false;
     } else {
       if (s.following) this.follow.reset();
+      if (!this.orbitFitted && f.view) {
+        const box = contentBox(this.world.staticDescriptors(), f.view, this.welcome.scenario.bounds);
+        this.orbit.frame(box.min, box.max);
+        this.orbitFitted = true;
+      }
       camera = this.orbit.view(dt);
       s.following = false;
     }
     this.input.captureOnClick = s.following;
     const stats = this.renderer.render(camera);
     s.camera = { ...camera, widthPx: stats.widthPx, heightPx: stats.heightPx };
+    this.tags?.update(f.view, camera, stats.widthPx, stats.heightPx);
+    this.onFrame?.(f.view);
     s.framesRendered++;
     if (s.firstFrameMs === null && f.view) s.firstFrameMs = performance.now();
     this.motion.frameDrawn(performance.now(), s.framesRendered, f.renderTick, mine ? [mine.position.x, mine.position.y, mine.position.z] : null);

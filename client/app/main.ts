@@ -13,6 +13,9 @@ import { fetchLobby, showStartScreen } from './start-screen.ts';
 import { installTestHook, type HookBody, type TaosState } from './test-hook.ts';
 import type { SnapshotView } from '../../shared/protocol/snapshot-frame.ts';
 import { WorldView } from './world-view.ts';
+import { Decorations } from './decorations.ts';
+import { NameTags } from './name-tags.ts';
+import { COURSE_SCENARIO, CourseObjective, ObjectivePanel, objectiveLines } from './course-objective.ts';
 
 const byId = <T extends HTMLElement>(id: string): T => {
   const e = document.getElementById(id);
@@ -135,6 +138,15 @@ function join(room: string | null, name: string): void {
   page.hud = hud;
   const world = new WorldView(renderer, (line) => hud.log(line));
   page.world = world;
+  const decorations = new Decorations(renderer, world);
+  let tags: NameTags | null = null;
+  let objective: CourseObjective | null = null;
+  const objectivePanel = new ObjectivePanel(byId('objective'));
+  world.onEvent = (e, removed) => {
+    decorations.onEvent(e, removed);
+    tags?.onEvent(e);
+    objective?.onEvent(e);
+  };
   const input = new InputController(byId('scene'));
   const wsUrl = `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/`;
 
@@ -146,15 +158,27 @@ function join(room: string | null, name: string): void {
       page.phase = 'playing';
       page.error = null;
       hideMessage();
+      decorations.clear();
+      tags?.clear();
+      tags = new NameTags(byId('tags'), welcome.playerId);
+      void tags.fetchNames(welcome.roomId);
       world.reset(welcome.staticBodies, welcome.dynamicBodies);
+      objective = welcome.scenario.name === COURSE_SCENARIO ? new CourseObjective(world.staticDescriptors(), (id) => world.descriptor(id)) : null;
+      objectivePanel.show([]);
       page.loop?.stop();
-      const loop = new GameLoop({ renderer, world, session: page.session!, input, hud, welcome, onFatal: (err) => fail('Rendering failed', err.message) });
+      const crosshair = byId('crosshair');
+      const onFrame = (view: SnapshotView | null): void => {
+        objectivePanel.show(objective ? objectiveLines(objective.state(view)) : []);
+        // Aiming means something only from the follow camera.
+        const aiming = page.loop?.state.following ?? false;
+        if (crosshair.hidden === aiming) crosshair.hidden = !aiming;
+      };
+      const loop = new GameLoop({ renderer, world, decorations, tags, onFrame, session: page.session!, input, hud, welcome, onFatal: (err) => fail('Rendering failed', err.message) });
       page.loop = loop;
       // ?hud=0 starts with the HUD and help hidden (clean screenshots); H toggles them.
       const showHud = new URLSearchParams(location.search).get('hud') !== '0';
       hud.visible = showHud;
       byId('help').hidden = !showHud;
-      byId('crosshair').hidden = false;
       hud.log(`joined ${welcome.roomId} (${welcome.scenario.name}) as #${welcome.playerId}`);
       input.attach();
       loop.start();

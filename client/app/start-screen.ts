@@ -1,5 +1,7 @@
-// The start screen: lists the server's rooms (GET /api/rooms, scenario descriptions from GET /api/scenarios) with a
-// Join button each, or offers the default room; resolves with the room the user picked. DOM text only.
+// The start screen (lobby): lists the server's rooms (GET /api/rooms, scenario descriptions from GET /api/scenarios)
+// with a Join button each, or offers the default room; offers "create room" and "join by code"
+// (create-room-form.ts); resolves with the room the user picked and puts it in the address. DOM text only.
+import { mountCreateRoom, mountJoinByCode, type ParamSummary, type ScenarioChoice } from './create-room-form.ts';
 
 /** A room as GET /api/rooms describes it. */
 export interface RoomSummary {
@@ -16,6 +18,8 @@ export interface RoomSummary {
 export interface ScenarioSummary {
   name: string;
   description: string;
+  /** Parameters with their ranges (empty when the server sent none). */
+  params: Readonly<Record<string, ParamSummary>>;
 }
 
 /** What the user chose: a room id, or null for the server's default room. */
@@ -39,7 +43,7 @@ export async function fetchLobby(baseUrl: string, timeoutMs = 5000): Promise<{ r
     const scenarios = new Map<string, ScenarioSummary>();
     try {
       const s = (await getJson(new URL('/api/scenarios', baseUrl).href, abort.signal)) as { scenarios?: unknown };
-      if (Array.isArray(s.scenarios)) for (const sc of s.scenarios) if (isScenarioSummary(sc)) scenarios.set(sc.name, sc);
+      if (Array.isArray(s.scenarios)) for (const sc of s.scenarios) if (isScenarioSummary(sc)) scenarios.set(sc.name, { name: sc.name, description: sc.description, params: validParams(sc.params) });
     } catch {
       // Descriptions are a nicety: the list still works without them.
     }
@@ -66,9 +70,21 @@ function hostOf(url: string): string {
   }
 }
 
-function isScenarioSummary(v: unknown): v is ScenarioSummary {
+function isScenarioSummary(v: unknown): v is { name: string; description: string; params?: unknown } {
   const s = v as ScenarioSummary;
   return !!s && typeof s.name === 'string' && typeof s.description === 'string';
+}
+
+// Only well-formed parameter ranges reach the form (the server's answer is still data from the network).
+function validParams(v: unknown): Record<string, ParamSummary> {
+  const out: Record<string, ParamSummary> = {};
+  if (!v || typeof v !== 'object') return out;
+  for (const [name, spec] of Object.entries(v as Record<string, unknown>)) {
+    const p = spec as ParamSummary;
+    if (!p || ![p.default, p.min, p.max].every((n) => typeof n === 'number' && Number.isFinite(n)) || p.min > p.max) continue;
+    out[name] = { default: p.default, min: p.min, max: p.max, integer: p.integer === true, description: typeof p.description === 'string' ? p.description : '' };
+  }
+  return out;
 }
 
 function el<K extends keyof HTMLElementTagNameMap>(tag: K, className: string, text?: string): HTMLElementTagNameMap[K] {
@@ -85,8 +101,17 @@ export function showStartScreen(root: HTMLElement, lobby: { rooms: RoomSummary[]
     list.replaceChildren();
     const pick = (room: string | null): void => {
       root.hidden = true;
+      // The address names the room, so a reload rejoins it and "Back to rooms" leads here again.
+      const url = new URL(location.href);
+      url.searchParams.set('room', room ?? '');
+      history.replaceState(null, '', url.href);
       resolve({ room });
     };
+    const choices: ScenarioChoice[] = [...lobby.scenarios.values()];
+    const create = root.querySelector('#create') as HTMLElement | null;
+    if (create) mountCreateRoom(create, choices, pick);
+    const byCode = root.querySelector('#join-by-code') as HTMLElement | null;
+    if (byCode) mountJoinByCode(byCode, pick);
     if (lobby.rooms.length === 0) {
       const li = el('li', '');
       li.append(el('span', 'name', 'Default room'), el('span', 'desc', 'No rooms are open yet: joining starts the server’s default room.'));

@@ -12,6 +12,13 @@ const OCCUPIED_EMISSIVE = 1.6;
 /** An empty sensor volume is drawn at this fraction of its colour (dim), an occupied one at full colour and lit. */
 const IDLE_SENSOR_SHADE = 0.4;
 
+/** A body as it was when its removal took effect. */
+export interface RemovedBody {
+  descriptor: BodyDescriptor;
+  /** Its last drawn pose (px, py, pz, qx, qy, qz, qw), or null if it was never drawn. */
+  pose: readonly number[] | null;
+}
+
 interface Known {
   descriptor: BodyDescriptor;
   /** Registered with the renderer (false when its shape was refused). */
@@ -40,6 +47,8 @@ export class WorldView {
   undescribed = 0;
   /** Static solid boxes, for the follow camera to stay out of walls. */
   readonly occluders = new BoxOccluders();
+  /** Called with each event as it takes effect (a removed body's descriptor and last pose come with its removal). */
+  onEvent: ((e: SimEvent, removed: RemovedBody | null) => void) | null = null;
 
   constructor(renderer: RenderTarget, log: (line: string) => void) {
     this.renderer = renderer;
@@ -122,6 +131,13 @@ export class WorldView {
     return this.staticCount + this.visible.size;
   }
 
+  /** Descriptors of the static bodies known (the scene's fixed geometry). */
+  staticDescriptors(): BodyDescriptor[] {
+    const out: BodyDescriptor[] = [];
+    for (const k of this.known.values()) if (k.descriptor.motion === 'static') out.push(k.descriptor);
+    return out;
+  }
+
   /** A known body's descriptor. */
   descriptor(id: number): BodyDescriptor | undefined {
     return this.known.get(id)?.descriptor;
@@ -159,6 +175,10 @@ export class WorldView {
   }
 
   private applyEvent(e: SimEvent): void {
+    if (this.onEvent) {
+      const k = e.type === 'bodyRemoved' ? this.known.get(e.bodyId) : undefined;
+      this.onEvent(e, k ? { descriptor: k.descriptor, pose: this.renderer.store.pose(k.descriptor.id) } : null);
+    }
     switch (e.type) {
       case 'sensorEnter':
       case 'sensorExit': {

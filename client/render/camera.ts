@@ -19,7 +19,14 @@ export class FollowCamera {
   wallMarginMetres = 0.25;
   /** How fast the camera catches up with its target (1/s); higher = stiffer. */
   stiffnessPerSecond = 14;
+  /**
+   * Closest the camera may come to the character's head before it rises over what is in the way (a low wall behind
+   * a player): closer than this the own capsule would fill the frame.
+   */
+  minDistanceMetres = 3;
   private smoothed: Vec3 | null = null;
+  /** How far (radians) the camera boom is lowered below the look pitch (camera raised) to clear obstacles, eased. */
+  private boomLift = 0;
 
   /** The view for a character whose feet are at `feet`, looking at yaw/pitch (radians); walls pull the camera in. */
   view(feet: Vec3, yawRadians: number, pitchRadians: number, dtSeconds: number, occluders?: BoxOccluders): CameraView {
@@ -43,17 +50,23 @@ export class FollowCamera {
       if (side < 1) shoulder *= Math.max(0, side - this.wallMarginMetres / shoulder);
     }
     const pivot: Vec3 = [t[0] - f.z * shoulder, t[1], t[2] + f.x * shoulder];
-    let eye: Vec3 = [pivot[0] - dir[0] * this.distanceMetres, Math.max(pivot[1] - dir[1] * this.distanceMetres, pivot[1] - 1.2), pivot[2] - dir[2] * this.distanceMetres];
+    // Something close behind (a wall at the player's back): raise the boom until the camera has room, so it looks
+    // over the obstacle instead of sitting inside the player's own capsule.
+    let lift = 0;
     if (occluders && occluders.size > 0) {
-      // Keep both the head and the middle of the body in sight (a low wall may hide one and not the other).
-      const body: Vec3 = [pivot[0], pivot[1] - this.heightMetres / 2, pivot[2]];
-      const hit = Math.min(occluders.castRay(pivot, eye), occluders.castRay(body, [eye[0], eye[1] - this.heightMetres / 2, eye[2]]));
-      if (hit < 1) {
-        const len = Math.hypot(eye[0] - pivot[0], eye[1] - pivot[1], eye[2] - pivot[2]);
-        const k = Math.max(0, hit - this.wallMarginMetres / len);
-        eye = [pivot[0] + (eye[0] - pivot[0]) * k, pivot[1] + (eye[1] - pivot[1]) * k, pivot[2] + (eye[2] - pivot[2]) * k];
+      let best = -1;
+      for (const candidate of BOOM_LIFTS_RADIANS) {
+        const reach = this.boomEye(pivot, f, pitch - candidate, occluders).distance;
+        if (reach > best + 0.25) {
+          best = reach;
+          lift = candidate;
+        }
+        if (reach >= this.minDistanceMetres) break;
       }
     }
+    const ease = Number.isFinite(dtSeconds) && dtSeconds > 0 ? 1 - Math.exp(-6 * Math.min(dtSeconds, 0.25)) : 1;
+    this.boomLift += (lift - this.boomLift) * ease;
+    const eye = this.boomEye(pivot, f, pitch - this.boomLift, occluders).eye;
     const look: Vec3 = [pivot[0] + dir[0] * 4, pivot[1] + dir[1] * 4, pivot[2] + dir[2] * 4];
     return { eye, target: look, fovYRadians: FOV_Y_RADIANS, nearMetres: NEAR_METRES, farMetres: FAR_METRES };
   }
@@ -61,8 +74,32 @@ export class FollowCamera {
   /** Forgets the smoothed position (after a respawn or teleport). */
   reset(): void {
     this.smoothed = null;
+    this.boomLift = 0;
+  }
+
+  // The camera at the end of a boom from the pivot along the look direction pitched by `boomPitch` (negative: looking
+  // down, so the camera sits higher), pulled in before the first static box.
+  private boomEye(pivot: Vec3, f: { x: number; z: number }, boomPitch: number, occluders?: BoxOccluders): { eye: Vec3; distance: number } {
+    const p = Math.max(-MAX_BOOM_PITCH_RADIANS, Math.min(1.2, boomPitch));
+    const cosP = Math.cos(p);
+    const dir: Vec3 = [f.x * cosP, Math.sin(p), f.z * cosP];
+    let eye: Vec3 = [pivot[0] - dir[0] * this.distanceMetres, Math.max(pivot[1] - dir[1] * this.distanceMetres, pivot[1] - 1.2), pivot[2] - dir[2] * this.distanceMetres];
+    const full = Math.hypot(eye[0] - pivot[0], eye[1] - pivot[1], eye[2] - pivot[2]);
+    if (!occluders || occluders.size === 0) return { eye, distance: full };
+    // Keep both the head and the middle of the body in sight (a low wall may hide one and not the other).
+    const body: Vec3 = [pivot[0], pivot[1] - this.heightMetres / 2, pivot[2]];
+    const hit = Math.min(occluders.castRay(pivot, eye), occluders.castRay(body, [eye[0], eye[1] - this.heightMetres / 2, eye[2]]));
+    if (hit >= 1) return { eye, distance: full };
+    const k = Math.max(0, hit - this.wallMarginMetres / full);
+    eye = [pivot[0] + (eye[0] - pivot[0]) * k, pivot[1] + (eye[1] - pivot[1]) * k, pivot[2] + (eye[2] - pivot[2]) * k];
+    return { eye, distance: full * k };
   }
 }
+
+/** Boom lifts tried, in order, when the camera has no room behind the player (radians above the look pitch). */
+const BOOM_LIFTS_RADIANS = [0, 0.3, 0.6, 0.9, 1.2] as const;
+/** The boom never goes past this pitch (radians; straight down is π/2). */
+const MAX_BOOM_PITCH_RADIANS = 1.35;
 
 /** Circles a point; dragging turns it, the wheel zooms, and it drifts slowly when left alone. */
 export class OrbitCamera {
@@ -73,11 +110,12 @@ export class OrbitCamera {
   /** Idle drift (rad/s); 0 turns it off. */
   driftRadiansPerSecond = 0.08;
 
-  /** Frames a box given by its min/max corners. */
+  /** Frames a box given by its min/max corners: its widest side spans most of a 16:9 view from above at an angle. */
   frame(min: Vec3, max: Vec3): void {
-    this.center = [(min[0] + max[0]) / 2, Math.max(min[1], 0) + Math.min(4, (max[1] - min[1]) / 4), (min[2] + max[2]) / 2];
-    const span = Math.max(max[0] - min[0], max[2] - min[2], 4);
-    this.radiusMetres = Math.min(150, span * 0.85);
+    // Scenes are wide rather than tall (a tall one is mostly sky above a pile): aim low, weigh height by half.
+    this.center = [(min[0] + max[0]) / 2, min[1] + (max[1] - min[1]) * 0.3, (min[2] + max[2]) / 2];
+    const span = Math.max(max[0] - min[0], (max[1] - min[1]) / 2, max[2] - min[2]);
+    this.radiusMetres = Math.max(3, Math.min(300, span * 0.75));
   }
 
   /** Turns the camera by a pointer drag in pixels. */

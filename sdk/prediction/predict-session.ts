@@ -186,16 +186,16 @@ export class PredictSession {
     if (!p || !this.active) return;
     const before = p.queuedRecords > 0 ? this.smoother.capture(this.sim!.readBodyStates()) : null;
     let report;
+    // The world after the rollback, at the tick it was drawn at, against what was drawn: the difference is hidden.
+    const corrected = (): void => {
+      if (before && this.smoother.correct(before, this.sim!.readBodyStates()) > 0) this.corrections++;
+    };
     try {
-      report = p.advance(targetTick, ownCommand);
+      report = p.advance(targetTick, ownCommand, corrected);
     } catch (error) {
       this.link.protocolError(`prediction failed: ${(error as Error).message}`);
       this.resync();
       return;
-    }
-    if (report.corrected && before) {
-      const jump = this.smoother.correct(before, this.sim!.readBodyStates());
-      if (jump > 0) this.corrections++;
     }
     const now = this.link.nowMs();
     if (this.lastFrameMs !== null) this.smoother.decay(now - this.lastFrameMs);

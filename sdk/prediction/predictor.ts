@@ -132,8 +132,10 @@ export class Predictor {
   /**
    * Applies the queued confirmed records (rolling back on a misprediction) and predicts up to `targetTick`
    * (exclusive: the simulation ends at tick targetTick), with `ownCommand(tick)` for the player's own ticks.
+   * `corrected` runs after a rollback has re-simulated back to the tick the simulation was at before (the same tick,
+   * corrected: what a renderer compares), before any new tick is predicted.
    */
-  advance(targetTick: number, ownCommand: (tick: number) => InputCommand | undefined): AdvanceReport {
+  advance(targetTick: number, ownCommand: (tick: number) => InputCommand | undefined, corrected?: () => void): AdvanceReport {
     const present = this.sim.tick;
     let rollbackFrom: number | null = null;
     let restoredFrom = present;
@@ -161,6 +163,11 @@ export class Predictor {
       this.confirm(tick, this.slots.get(tick)!, hash);
     }
     const end = Math.min(Math.max(targetTick, present), this.confirmed + this.maxAheadTicks);
+    while (this.sim.tick < Math.min(present, end)) {
+      this.stepSlot(this.predictedRecord(this.sim.tick, ownCommand));
+      stepped++;
+    }
+    if (rollbackFrom !== null && rollbackFrom < present && this.sim.tick === present) corrected?.();
     while (this.sim.tick < end) {
       this.stepSlot(this.predictedRecord(this.sim.tick, ownCommand));
       stepped++;

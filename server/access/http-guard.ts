@@ -1,5 +1,6 @@
 // Access rules of the HTTP routes: every mutating request (anything but GET/HEAD/OPTIONS) must come from an allowed
-// origin; mutating /api/ routes and /metrics need the admin token when one is set. Reads stay open (lobby pages).
+// origin; mutating /api/ routes, /metrics and everything under /monitor/ need the admin token when one is set. Other
+// reads stay open (lobby pages).
 import type { IncomingMessage } from 'node:http';
 import type { AdminAuth } from './admin-auth.ts';
 import { originFacts, type OriginPolicy } from './origin-policy.ts';
@@ -19,6 +20,8 @@ export interface HttpGuardOptions {
 /** Whether a route is an operator route (needs the admin token when one is set). */
 export function isAdminRoute(method: string, path: string): boolean {
   if (path === '/metrics') return true;
+  // The monitor's data and actions; its page (/monitor) holds no data and asks for the token itself.
+  if (path.startsWith('/monitor/')) return true;
   return !SAFE_METHODS.has(method) && (path === '/api' || path.startsWith('/api/'));
 }
 

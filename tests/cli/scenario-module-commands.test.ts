@@ -20,7 +20,7 @@ beforeAll(async () => {
   await mkdir(join(dir, 'v2'));
   game = await writeGameModule(join(dir, 'v1'));
   changed = await writeGameModule(join(dir, 'v2'), { crateHalfMetres: 0.3 });
-  logPath = join(dir, 'session.tlog');
+  logPath = join(dir, 'session.taoslog');
   const r = await cli('record', '--scenario', game, '--bots', '2', '--ticks', '90', '--out', logPath, '--checkpoint-every', '30');
   if (r.code !== 0) throw new Error(r.stderr);
 });

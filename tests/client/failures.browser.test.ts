@@ -1,5 +1,6 @@
-// Browser tests of the page's failure messages: the server's API is unreachable, the room does not exist, and the
-// server shuts down under a connected page. Each ends in a clear message, never a blank or frozen page.
+// Browser tests of the page's failure messages: the server's API is unreachable, the room does not exist, an operator
+// kicks the player, and the server shuts down under a connected page. Each ends in a clear message with a way back,
+// never a blank or frozen page, and never a reconnect loop.
 import { afterAll, beforeAll, expect, it } from 'vitest';
 import type { TaosState } from '../../client/app/test-hook.ts';
 import { buildClient } from '../../scripts/build-client.ts';
@@ -50,6 +51,19 @@ describeBrowser('failure messages', () => {
       await missing.page.waitForSelector('#start:not([hidden]) #rooms button', { timeout: 15_000 });
       expect(new URL(missing.page.url()).searchParams.has('room')).toBe(false);
       await missing.page.close();
+
+      // An operator removes a player (the monitor's kick): the page says so, offers only the way back, and stays put.
+      const kicked = await browser.newPage();
+      await kicked.page.goto(new URL('/?room=&name=rowdy', server.url).href);
+      await waitForHook(kicked.page, 't.connected && t.playerId !== null');
+      const rowdy = (await readHook<TaosState>(kicked.page)).playerId!;
+      const kick = await fetch(new URL(`/monitor/rooms/default/players/${rowdy}/kick`, server.url), { method: 'POST' });
+      expect(kick.status).toBe(200);
+      await waitForHook(kicked.page, "t.page === 'closed'", 15_000);
+      await expect(kicked.page.locator('#message h2').textContent()).resolves.toBe('You were removed from the room');
+      await expect(kicked.page.locator('#message p').textContent()).resolves.toMatch(/kicked: an operator removed you from the room/);
+      await expect(kicked.page.locator('#message button').allTextContents()).resolves.toEqual(['Back to rooms']);
+      await kicked.page.close();
 
       const { page, errors } = await browser.newPage();
       await page.goto(new URL('/?room=', server.url).href);

@@ -15,18 +15,31 @@ describe('FollowCamera', () => {
     expect(v.target[2]).toBeLessThan(0);
   });
 
-  it('pulls in in front of a wall between it and the character', () => {
+  it('stays in front of a wall behind the character, rising over it rather than closing in on the head', () => {
     const cam = new FollowCamera();
     cam.shoulderMetres = 0;
+    const head: [number, number, number] = [0, cam.heightMetres, 0];
+    const far = (eye: number[]): number => Math.hypot(eye[0] - head[0], eye[1] - head[1], eye[2] - head[2]);
     const walls = new BoxOccluders();
-    walls.set(7, { x: 0, y: 1, z: 3 }, I, { x: 10, y: 3, z: 0.25 }); // a wall 3 m behind the player
+    walls.set(7, { x: 0, y: 1, z: 3 }, I, { x: 10, y: 3, z: 0.25 }); // a 4 m wall 3 m behind the player
     const v = cam.view([0, 0, 0], 0, 0, 0, walls);
     expect(v.eye[2]).toBeLessThan(2.75);
-    expect(v.eye[2]).toBeGreaterThan(2);
-    // A wall lower than the camera target still hides the body: the camera comes in front of it too.
+    expect(far(v.eye)).toBeGreaterThanOrEqual(cam.minDistanceMetres);
+    expect(walls.castRay(head, v.eye as [number, number, number])).toBe(1);
+    // A wall lower than the head (a walkway's edge): the camera looks over it from above, not from inside the capsule.
     const low = new BoxOccluders();
-    low.set(8, { x: 0, y: 0.75, z: 3 }, I, { x: 10, y: 0.75, z: 0.25 }); // 1.5 m: below the head
-    expect(cam.view([0, 0, 0], 0, -0.2, 0, low).eye[2]).toBeLessThan(2.75);
+    low.set(8, { x: 0, y: 0.75, z: 3 }, I, { x: 10, y: 0.75, z: 0.25 });
+    cam.reset();
+    const over = cam.view([0, 0, 0], 0, -0.2, 0, low);
+    expect(over.eye[1]).toBeGreaterThan(1.5);
+    expect(far(over.eye)).toBeGreaterThanOrEqual(cam.minDistanceMetres);
+    expect(low.castRay(head, over.eye as [number, number, number])).toBe(1);
+    // Walled in on every side up high: it pulls in before the nearest wall.
+    const tall = new BoxOccluders();
+    tall.set(9, { x: 0, y: 25, z: 1 }, I, { x: 10, y: 25, z: 0.25 });
+    cam.reset();
+    expect(cam.view([0, 0, 0], 0, 0, 0, tall).eye[2]).toBeLessThan(0.75);
+    cam.reset();
     const free = cam.view([0, 0, 0], 0, 0, 0, new BoxOccluders());
     expect(free.eye[2]).toBeCloseTo(cam.distanceMetres, 6);
   });
