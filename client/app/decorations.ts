@@ -105,6 +105,8 @@ export class Decorations {
   private readonly bullets = new Map<number, Tracked>();
   private nextSpark = 0;
   private nowMs = 0;
+  /** Shadow radius by body id (0: none), so a hull's points are walked once, not every frame. */
+  private readonly radii = new Map<number, { descriptor: BodyDescriptor; radius: number }>();
   /** The scene's static height fields (read once per welcome, on the first frame). */
   private heightFields: BodyDescriptor[] | null = null;
 
@@ -126,6 +128,7 @@ export class Decorations {
   onEvent(e: SimEvent, removed: RemovedBody | null): void {
     if (e.type === 'bodyRemoved') {
       this.bullets.delete(e.bodyId);
+      this.radii.delete(e.bodyId);
       if (this.shadows.has(e.bodyId)) {
         this.renderer.removeBody(SHADOW_IDS + e.bodyId);
         this.shadows.delete(e.bodyId);
@@ -156,6 +159,7 @@ export class Decorations {
     this.sparks.clear();
     this.flashes.clear();
     this.bullets.clear();
+    this.radii.clear();
     this.heightFields = null;
   }
 
@@ -212,7 +216,9 @@ export class Decorations {
         continue;
       }
       if (drawn >= MAX_SHADOWS || !canShadow) continue;
-      const radius = footprintRadius(d.shape);
+      let cached = this.radii.get(id);
+      if (cached?.descriptor !== d) this.radii.set(id, (cached = { descriptor: d, radius: footprintRadius(d.shape) }));
+      const radius = cached.radius;
       if (radius <= 0) continue;
       const ground = this.groundBelow(x, y, z);
       // A body resting on what is below it hides its own shadow: only bodies in the air get one (fewer to draw).

@@ -50,7 +50,7 @@ export class NameTags {
   /** Places the tags for this frame. */
   update(view: SnapshotView | null, camera: CameraView, widthPx: number, heightPx: number): void {
     const seen = new Set<number>();
-    if (view && widthPx > 0 && heightPx > 0) {
+    if (view && widthPx > 0 && heightPx > 0 && view.characters.some((c) => c.playerId !== this.ownPlayerId)) {
       const viewMatrix = mat4LookAt(camera.eye, camera.target, [0, 1, 0]);
       const clip = mat4Multiply(mat4Perspective(camera.fovYRadians, widthPx / heightPx, camera.nearMetres, camera.farMetres), viewMatrix);
       for (const c of view.characters) {

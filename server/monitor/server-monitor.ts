@@ -227,7 +227,6 @@ export class ServerMonitor {
     };
     perRoom('taos_room_players', 'Players in each open room (held ones included)', (r) => r.playerCount);
     perRoom('taos_room_bodies', 'Bodies in each open room', (r) => r.bodies);
-    perRoom('taos_room_ticks_per_second', 'Ticks simulated per second in each open room (5 s window)', (r) => r.ticksPerSecond);
     perRoom('taos_room_tick_p50_seconds', "Median wall time of each open room's last 240 ticks", (r) => (r.tickMs ? r.tickMs.p50 / 1000 : null));
     perRoom('taos_room_tick_p99_seconds', "99th percentile wall time of each open room's last 240 ticks", (r) => (r.tickMs ? r.tickMs.p99 / 1000 : null));
     perRoom('taos_room_kbps_in', 'Kilobits per second received from the players of each open room', (r) => r.kbpsIn);

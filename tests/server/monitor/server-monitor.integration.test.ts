@@ -120,7 +120,7 @@ describe('server monitor', () => {
 
     const metrics = await (await fetch(new URL('/metrics', url), { headers: auth })).text();
     expect(metrics).toMatch(/^taos_room_players\{room="arena",scenario="monitor-arena"\} 2$/m);
-    expect(metrics).toMatch(/^taos_room_ticks_per_second\{room="arena",scenario="monitor-arena"\} [1-9]/m);
+    expect(metrics).toMatch(/^taos_room_bodies\{room="arena",scenario="monitor-arena"\} [1-9]/m);
 
     // Kick: refused without the token, then bob's client ends with "kicked" and the monitor lists ann alone.
     expect((await fetch(new URL(`/monitor/rooms/arena/players/${wb.playerId}/kick`, url), { method: 'POST' })).status).toBe(401);
