@@ -5,7 +5,7 @@ import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { ServerAccess } from './access/access-setup.ts';
 import { resolveParams } from '../shared/sim/scenario.ts';
 import type { FleetDirectory } from './fleet/fleet-directory.ts';
-import { cachedHost, listFleetRooms, movedAnswer } from './fleet/fleet-rooms.ts';
+import { cachedHost, listFleetRooms, movedAnswer, playersElsewhere } from './fleet/fleet-rooms.ts';
 import { RoomMovedError } from './fleet/room-moved.ts';
 import type { GameServer } from './game-server.ts';
 import { HttpError, HttpErrorCode } from './http-errors.ts';
@@ -104,7 +104,10 @@ export function createHttpApi(opts: HttpApiOptions): HttpApi {
       opts.logger.info({ room: id, clients: info.clients }, 'room closed over HTTP');
       return info;
     },
-    roomPlayers(roomId) {
+    async roomPlayers(roomId) {
+      // A page joined to a room of another fleet server through this one asks here: the host answers for it.
+      const remote = !game.rooms.get(roomId) && opts.fleet && isRoomId(roomId) ? await playersElsewhere(opts.fleet, roomId) : null;
+      if (remote) return remote;
       if (!game.rooms.get(roomId)) throw new HttpError(404, HttpErrorCode.RoomNotFound, `no room ${quote(roomId)} is open`);
       return game
         .sessionList()

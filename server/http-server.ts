@@ -34,7 +34,7 @@ export interface HttpApi {
   /** DELETE /api/rooms/:id: closes the room (its players get a bye saying so); resolves with its last summary. */
   deleteRoom(id: string): Promise<RoomInfo>;
   /** GET /api/rooms/ID/players: the connected players' ids and display names (what the room's feed shows anyway). */
-  roomPlayers?(roomId: string): Array<{ playerId: number; name: string }>;
+  roomPlayers?(roomId: string): Array<{ playerId: number; name: string }> | Promise<Array<{ playerId: number; name: string }>>;
   /** POST /api/rooms/ID/seats {ttlSeconds?}: a seat token for that room (an HttpError or RoomError on refusal). */
   reserveSeat(roomId: string, req: SeatRequest): SeatAnswer;
   /** GET /metrics. */
@@ -203,7 +203,7 @@ async function route(api: HttpApi, req: IncomingMessage, res: ServerResponse): P
   const playersMatch = api.roomPlayers ? /^\/api\/rooms\/([^/]+)\/players$/.exec(path) : null;
   if (playersMatch && api.roomPlayers) {
     if (!isGet) throw notAllowed(method, path, 'GET, HEAD');
-    sendJson(res, 200, { players: api.roomPlayers(decodeSegment(playersMatch[1])) });
+    sendJson(res, 200, { players: await api.roomPlayers(decodeSegment(playersMatch[1])) });
     return;
   }
   const roomMatch = /^\/api\/rooms\/([^/]+)$/.exec(path);

@@ -51,6 +51,35 @@ export function cachedHost(directory: FleetDirectory, roomId: string): MemberAdd
   return null;
 }
 
+/** How long asking another member for a room's players may take. */
+const PLAYERS_WAIT_MS = 1000;
+
+/**
+ * The players of a room another member hosts, asked of that member (GET /api/rooms/ID/players there), or null when no
+ * other member hosts it or it does not answer in time.
+ */
+export async function playersElsewhere(directory: FleetDirectory, roomId: string): Promise<Array<{ playerId: number; name: string }> | null> {
+  let host: MemberAddress;
+  try {
+    await directory.locate(roomId);
+    return null;
+  } catch (error) {
+    if (!(error instanceof RoomMovedError)) return null;
+    host = error.host;
+  }
+  try {
+    const res = await fetch(new URL(`api/rooms/${encodeURIComponent(roomId)}/players`, host.url), { headers: { accept: 'application/json' }, signal: AbortSignal.timeout(PLAYERS_WAIT_MS) });
+    if (!res.ok) return null;
+    const body = (await res.json()) as { players?: unknown };
+    if (!Array.isArray(body.players)) return null;
+    return body.players
+      .filter((p): p is { playerId: number; name: string } => typeof (p as { playerId?: unknown }).playerId === 'number' && typeof (p as { name?: unknown }).name === 'string')
+      .map((p) => ({ playerId: p.playerId, name: p.name.slice(0, 64) }));
+  } catch {
+    return null;
+  }
+}
+
 /** The HTTP answer for a room hosted by another member: 409 `room-moved` with its URLs. */
 export function movedAnswer(error: RoomMovedError): HttpError {
   return new HttpError(409, HttpErrorCode.RoomMoved, error.message, {}, { roomId: error.roomId, url: error.host.url, wsUrl: error.host.wsUrl });

@@ -73,6 +73,9 @@ describeRedis('a fleet of serve processes on Redis', () => {
       expect(moves).toEqual([a.wsUrl]);
       expect(client.url).toBe(a.wsUrl);
       await eventually(async () => (await listRooms(a)).find((r) => r.id === roomId)?.clients === 1, 5000, 'A counts the player');
+      // B answers for the players of A's room (a page on B asks it for name tags).
+      const players = (await (await fetch(`${b.url}api/rooms/${roomId}/players`)).json()) as { players: Array<{ name: string }> };
+      expect(players.players.map((p) => p.name)).toEqual(['Ada']);
     } finally {
       client.close();
     }
