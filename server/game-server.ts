@@ -85,6 +85,7 @@ export class GameServer {
     this.maxConnections = opts.maxConnections ?? 256;
     this.startedMs = this.clock.nowMs();
     this.workers = opts.workers ?? null;
+    this.workers?.registerMetrics(this.metrics.registry);
     const graceMs = opts.resumeGraceMs ?? DEFAULT_RESUME_GRACE_MS;
     const seats = opts.seats ?? null;
     if (opts.requireSeat === true && seats === null) throw new Error('requireSeat needs seat tokens (a join secret) to check');
@@ -115,7 +116,7 @@ export class GameServer {
       directory: opts.directory,
     });
     this.metrics.setRoomHeapSource(() => this.roomHeaps());
-    this.metrics.setRoomPaceSource(() => this.rooms.list().map((r) => ({ room: r.id, ticksPerSecond: r.ticksPerSecond, slow: r.slow })));
+    this.metrics.setRoomPaceSource(() => this.rooms.list().map((r) => ({ room: r.id, slow: r.slow })));
   }
 
   /** Each open room's WASM heap (rooms whose simulation does not report one are left out). */

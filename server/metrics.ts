@@ -56,18 +56,15 @@ export interface ServerMetrics {
   readonly wasmHeap: Gauge<string>;
   /** Sets where wasmHeap reads the open rooms from (the server does it once its rooms exist). */
   setRoomHeapSource(source: () => Iterable<RoomHeapUsage>): void;
-  /** Each open room's ticks per second over the last second (label room), read at scrape time. */
-  readonly roomTickRate: Gauge<string>;
   /** 1 while a room cannot keep the tick rate and runs slowed, else 0 (label room). */
   readonly roomSlow: Gauge<string>;
-  /** Sets where roomTickRate and roomSlow read the open rooms from. */
+  /** Sets where roomSlow reads the open rooms from (their ticks per second are the monitor's taos_room_ticks_per_second). */
   setRoomPaceSource(source: () => Iterable<RoomPaceReading>): void;
 }
 
-/** One room's pace for the roomTickRate and roomSlow gauges. */
+/** One room's pace for the roomSlow gauge. */
 export interface RoomPaceReading {
   room: string;
-  ticksPerSecond: number;
   slow: boolean;
 }
 
@@ -103,16 +100,6 @@ export function createMetrics(opts: { processMetrics?: boolean; prefix?: string 
     },
   });
   let paceSource: () => Iterable<RoomPaceReading> = () => [];
-  const roomTickRate = new Gauge({
-    name: `${p}room_ticks_per_second`,
-    help: 'Ticks each open room ran per second over the last second (60 when it keeps up; 0 while paused)',
-    labelNames: ['room'],
-    registers,
-    collect() {
-      this.reset();
-      for (const r of paceSource()) this.set({ room: r.room }, r.ticksPerSecond);
-    },
-  });
   const roomSlow = new Gauge({
     name: `${p}room_slow`,
     help: ' 1 while a room cannot keep the tick rate and runs slowed (only that room), else 0',
@@ -129,7 +116,6 @@ export function createMetrics(opts: { processMetrics?: boolean; prefix?: string 
     setRoomHeapSource: (source) => {
       heapSource = source;
     },
-    roomTickRate,
     roomSlow,
     setRoomPaceSource: (source) => {
       paceSource = source;

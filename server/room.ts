@@ -140,7 +140,6 @@ export class Room implements HostedRoom {
   private nextPlayerId = 1;
   private closedReason: string | null = null;
   private snapshotAccumulator = 0;
-  private busySecondsTotal = 0;
   private cpuSecondsTotal = 0;
   private readonly paceMeter: RoomPace;
   private lastBodyCount = 0;
@@ -233,11 +232,6 @@ export class Room implements HostedRoom {
   /** Ticks per second over the last second and whether the room runs slowed (cheap: no percentiles). */
   pace(): { ticksPerSecond: number; slow: boolean } {
     return this.paceMeter.rate();
-  }
-
-  /** Wall seconds this room's ticks have taken since it opened. */
-  get busySeconds(): number {
-    return this.busySecondsTotal;
   }
 
   /** CPU seconds of its thread this room's ticks have used since it opened (its load on its thread). */
@@ -445,7 +439,6 @@ export class Room implements HostedRoom {
     const seconds = (performance.now() - started) / 1000;
     const cpu = process.threadCpuUsage(cpuStarted);
     const cpuSeconds = (cpu.user + cpu.system) / 1e6;
-    this.busySecondsTotal += seconds;
     this.cpuSecondsTotal += cpuSeconds;
     this.paceMeter.ticked(seconds * 1000, cpuSeconds * 1000);
     m.tickDuration.observe(seconds);

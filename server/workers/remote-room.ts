@@ -159,7 +159,11 @@ export class RemoteRoom implements HostedRoom {
 
   async close(reason: string): Promise<void> {
     if (this.closed) return;
-    await this.thread.close(this.id, reason);
+    try {
+      await this.thread.close(this.id, reason);
+    } catch (error) {
+      if (!this.closed) throw error; // its worker died meanwhile: the room is closed all the same
+    }
   }
 
   /** The worker ran ticks up to `tick` (from its byte batches). */

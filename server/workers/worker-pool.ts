@@ -1,6 +1,7 @@
 // The room workers of a server (serve --room-workers N): starts them, places each new room on the worker with the most
 // headroom by measured (or estimated) CPU per tick, refuses a room no worker has room for (503 with the reason), and
 // replaces a worker that died. The RoomManager opens rooms through it instead of on the main thread.
+import { Gauge, type Registry } from 'prom-client';
 import { ErrorCode } from '../../shared/protocol/opcodes.ts';
 import type { Logger } from '../logger.ts';
 import { RoomError } from '../room.ts';
@@ -81,6 +82,29 @@ export class WorkerPool implements RoomHost {
     const thread = this.threads[placed.worker];
     if (!thread) throw new RoomError(ErrorCode.ServerFull, `room worker ${placed.worker} is restarting; try again shortly`);
     return thread.open(spec);
+  }
+
+  /**
+   * Adds the workers' load to a registry (read at scrape time): taos_room_worker_cpu_ms_per_tick{worker} (its rooms'
+   * CPU per tick, measured or estimated), taos_room_worker_headroom_ms{worker} and taos_room_worker_rooms{worker}.
+   */
+  registerMetrics(registry: Registry, prefix = 'taos_'): void {
+    const loads = (): WorkerLoad[] => this.loads();
+    const gauge = (name: string, help: string, value: (l: WorkerLoad) => number): void => {
+      new Gauge({
+        name: `${prefix}${name}`,
+        help,
+        labelNames: ['worker'],
+        registers: [registry],
+        collect() {
+          this.reset();
+          for (const l of loads()) this.set({ worker: String(l.worker) }, value(l));
+        },
+      });
+    };
+    gauge('room_worker_cpu_ms_per_tick', "Each room worker's rooms' CPU ms per tick (measured; estimated until a room has ticked)", (l) => l.loadMs);
+    gauge('room_worker_headroom_ms', 'CPU ms per tick a room worker has left under its budget (negative: over it, running at the lowest priority)', (l) => l.headroomMs);
+    gauge('room_worker_rooms', 'Rooms open in each room worker', (l) => l.rooms);
   }
 
   /** Every worker's metrics as prom-client JSON (workers that do not answer in time are left out). */

@@ -69,7 +69,6 @@ interface MemberEntry {
 
 /** One room's counters at the start of the current status window. */
 interface Window {
-  atMs: number;
   ticks: number;
   cpuSeconds: number;
   skipped: number;
@@ -249,9 +248,8 @@ export class WorkerRooms {
   }
 
   private pushStatus(): void {
-    const now = performance.now();
     const rooms: RoomStatus[] = [];
-    for (const room of this.rooms.values()) rooms.push(this.status(room, now));
+    for (const room of this.rooms.values()) rooms.push(this.status(room));
     this.adjustPriority(rooms);
     this.opts.post({ t: 'status', rooms, externalBytes: getHeapStatistics().external_memory });
   }
@@ -269,12 +267,12 @@ export class WorkerRooms {
     else this.opts.logger.info({ loadMs: Math.round(loadMs * 10) / 10, budgetMs: this.opts.config.budgetMsPerTick }, overloaded ? 'room worker over its CPU budget: running at the lowest priority' : 'room worker back within its CPU budget: normal priority');
   }
 
-  private status(room: Room, now: number): RoomStatus {
+  private status(room: Room): RoomStatus {
     const clock = room.tickClock;
-    const w = this.windows.get(room.id) ?? { atMs: now, ticks: clock.ticksRun, cpuSeconds: room.cpuSeconds, skipped: clock.skippedTicks, cpuMs: null };
+    const w = this.windows.get(room.id) ?? { ticks: clock.ticksRun, cpuSeconds: room.cpuSeconds, skipped: clock.skippedTicks, cpuMs: null };
     const ran = clock.ticksRun - w.ticks;
     const cpuMs = ran > 0 ? ((room.cpuSeconds - w.cpuSeconds) * 1000) / ran : w.cpuMs;
-    this.windows.set(room.id, { atMs: now, ticks: clock.ticksRun, cpuSeconds: room.cpuSeconds, skipped: clock.skippedTicks, cpuMs });
+    this.windows.set(room.id, { ticks: clock.ticksRun, cpuSeconds: room.cpuSeconds, skipped: clock.skippedTicks, cpuMs });
     const missed: number[] = [];
     const info = room.info();
     for (const playerId of room.playerIds()) missed.push(playerId, room.missedInputTicks(playerId));

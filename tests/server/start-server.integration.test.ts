@@ -62,7 +62,7 @@ describe.each([0, 2])('startServer (real sockets, %i room workers)', (roomWorker
     expect(page.status).toBe(503);
     expect(await page.text()).toMatch(/has not been built/);
     const metrics = await (await fetch(`${server.url}metrics`)).text();
-    for (const name of ['taos_tick_duration_seconds_bucket', 'taos_physics_step_seconds', 'taos_rooms 1', 'taos_clients 0', 'taos_inputs_late_total', 'taos_inputs_dropped_total', 'taos_snapshot_bytes', 'taos_bytes_sent_total', 'taos_snapshots_skipped_total', 'taos_tick_overruns_total', 'taos_room_wasm_heap_bytes{room="default",kind="used"}']) {
+    for (const name of ['taos_tick_duration_seconds_bucket', 'taos_physics_step_seconds', 'taos_rooms 1', 'taos_clients 0', 'taos_inputs_late_total', 'taos_inputs_dropped_total', 'taos_snapshot_bytes', 'taos_bytes_sent_total', 'taos_snapshots_skipped_total', 'taos_tick_overruns_total', 'taos_room_wasm_heap_bytes{room="default",kind="used"}', 'taos_room_slow{room="default"} 0', ...(roomWorkers > 0 ? ['taos_room_worker_rooms{worker="0"}', 'taos_room_worker_cpu_ms_per_tick{worker="1"}'] : [])]) {
       expect(metrics).toContain(name);
     }
   });
