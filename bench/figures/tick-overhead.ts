@@ -1,10 +1,13 @@
 // Tick overhead: for cubes-901 and the 1000-body shape-rain pile, the honest floor (every character's update plus the
 // bare Jolt step) against the full server tick over the same ticks (arrived client messages as the real client sends
 // them, the room's record, characters, bullets, sensor events, the input log with a state hash every tick, snapshot
-// encoding for 1, 16 and 64 clients), in alternating batches; reported as ms over the floor, ratio and cost per client.
+// encoding for 1, 16 and 64 clients), in alternating batches; reported as ms over the floor, ratio and cost per client,
+// with the GC pause time inside each full tick (perf_hooks 'gc' entries).
+import { PerformanceObserver } from 'node:perf_hooks';
 import type { ChartBar, FigureImpl, FigureOutput, ReportRow } from '../lib/figure.ts';
 import { floorStepBatch, type FloorTick } from '../lib/raw-step.ts';
 import { CUBES_SCENE, createSceneSim, PILE_READY_TICK, PILE_SCENE, stepEmptyTo, type Scene } from '../lib/scenes.ts';
+import { gcPauseInSpans, type GcPause, type Span } from '../lib/rules.ts';
 import { startServerRig, type TickParts } from '../lib/server-rig.ts';
 import { linearFit, median, ratio, round, roundSummary, summarize, type Summary } from '../lib/stats.ts';
 import { kbps } from '../lib/wire.ts';
@@ -39,6 +42,8 @@ interface ConfigResult {
   /** Median ms per tick of each part of the full tick; `other` is the rest (room bookkeeping, log records, GC). */
   partsMedianMs: Record<keyof TickParts | 'other', number>;
   downstreamKbpsPerClient: number;
+  /** GC pause ms inside each full tick (pauses that started during it): p99, max and how many ticks had one. */
+  gcPauseMsPerTick: { p99: number; max: number; ticksWithGc: number };
 }
 
 /** Per scene: the full tick's excess over the floor as a fixed part plus a cost per client (fit over the client counts). */
@@ -61,7 +66,12 @@ async function warmStart(scene: Scene, log: (m: string) => void): Promise<Uint8A
   }
 }
 
-async function measure(scene: Scene, startBytes: Uint8Array | null, clients: number, quick: boolean, log: (m: string) => void): Promise<ConfigResult> {
+/** Lets perf_hooks hand over the GC entries it has buffered (they arrive on a later turn of the event loop). */
+function flushGcEntries(): Promise<void> {
+  return new Promise((resolve) => setTimeout(resolve, 20));
+}
+
+async function measure(scene: Scene, startBytes: Uint8Array | null, clients: number, quick: boolean, pauses: readonly GcPause[], log: (m: string) => void): Promise<ConfigResult> {
   const warmTicks = quick ? 15 : 40;
   const batches = quick ? 5 : 16;
   const batchTicks = quick ? 8 : 15;
@@ -75,6 +85,7 @@ async function measure(scene: Scene, startBytes: Uint8Array | null, clients: num
     const floor: FloorTick[] = [];
     const full: number[] = [];
     const parts: TickParts[] = [];
+    const spans: Span[] = [];
     log(`${scene.label}, ${clients} client(s): ${batches} × (${batchTicks} floor + ${batchTicks} full ticks)`);
     for (let b = 0; b < batches; b++) {
       // The first tick of each batch follows a checkpoint save (floor) or restore (full): both are dropped.
@@ -83,9 +94,11 @@ async function measure(scene: Scene, startBytes: Uint8Array | null, clients: num
         rig.takeParts();
         const t0 = performance.now();
         rig.serverTick();
-        const ms = performance.now() - t0;
+        const t1 = performance.now();
+        const ms = t1 - t0;
         const p = rig.takeParts();
         if (i > 0) {
+          spans.push({ startMs: t0, endMs: t1 });
           full.push(ms);
           parts.push(p);
         }
@@ -93,6 +106,9 @@ async function measure(scene: Scene, startBytes: Uint8Array | null, clients: num
       }
     }
     const after = rig.downstream();
+    await flushGcEntries();
+    const gcPerTick = gcPauseInSpans(spans, pauses);
+    const gc = summarize(gcPerTick);
     const r = summarize(floor.map((t) => t.ms));
     const f = summarize(full);
     const partMedian = (key: keyof TickParts): number => round(median(parts.map((p) => p[key])), 4);
@@ -121,6 +137,7 @@ async function measure(scene: Scene, startBytes: Uint8Array | null, clients: num
         events: partMedian('events'),
         other: round(median(other), 4),
       },
+      gcPauseMsPerTick: { p99: round(gc.p99, 3), max: round(gc.max, 3), ticksWithGc: gcPerTick.filter((ms) => ms > 0).length },
       downstreamKbpsPerClient: round(kbps(after.bytesPerClient - before.bytesPerClient, (batches * (batchTicks + 1)) / TICK_RATE_HZ), 1),
     };
   } finally {
@@ -145,9 +162,18 @@ function sceneCosts(results: readonly ConfigResult[]): SceneCost[] {
 
 async function run(opts: { quick: boolean; log(m: string): void }): Promise<FigureOutput> {
   const results: ConfigResult[] = [];
-  for (const scene of [CUBES_SCENE, PILE_SCENE] as Scene[]) {
-    const startBytes = await warmStart(scene, opts.log);
-    for (const clients of CLIENT_COUNTS) results.push(await measure(scene, startBytes, clients, opts.quick, opts.log));
+  const pauses: GcPause[] = [];
+  const gcObserver = new PerformanceObserver((list) => {
+    for (const e of list.getEntries()) pauses.push({ startTime: e.startTime, duration: e.duration });
+  });
+  gcObserver.observe({ entryTypes: ['gc'] });
+  try {
+    for (const scene of [CUBES_SCENE, PILE_SCENE] as Scene[]) {
+      const startBytes = await warmStart(scene, opts.log);
+      for (const clients of CLIENT_COUNTS) results.push(await measure(scene, startBytes, clients, opts.quick, pauses, opts.log));
+    }
+  } finally {
+    gcObserver.disconnect();
   }
   const costs = sceneCosts(results);
   const at16 = results.filter((r) => r.clients === 16);
@@ -167,6 +193,10 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
       rows.push({ figure: 'tick overhead', measure: `${scene}, 16 clients: full/floor median`, value: r16.medianRatio, unit: '×', digits: 2, goal: ratioGoal(scene) });
       rows.push({ figure: 'tick overhead', measure: `${scene}, 16 clients: full/floor p99 (${r16.fullMs.p99.toFixed(2)}/${r16.floorMs.p99.toFixed(2)} ms)`, value: r16.p99Ratio, unit: '×', digits: 2, goal: ratioGoal(scene) });
     }
+    if (r16) {
+      const g = r16.gcPauseMsPerTick;
+      rows.push({ figure: 'tick overhead', measure: `${scene}, 16 clients: GC pause inside a full tick, p99 (max ${g.max.toFixed(2)} ms; ${g.ticksWithGc} of ${r16.ticks} ticks had one)`, value: g.p99, unit: 'ms', digits: 2 });
+    }
     const c = costs.find((x) => x.scene === scene);
     if (c) {
       rows.push({ figure: 'tick overhead', measure: `${scene}: per client per tick, in-process, no sockets (fit over ${CLIENT_COUNTS.join('/')} clients)`, value: c.usPerClient, unit: 'µs', digits: 1 });
@@ -176,11 +206,13 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
   const headlineRatio = worst(at16.map((r) => r.medianRatio));
   const headlineP99 = worst(at16.map((r) => r.p99Ratio));
   const headlineOver = worst(at16.map((r) => r.overMedianMs));
+  const headlineGc = worst(at16.map((r) => r.gcPauseMsPerTick.p99));
   return {
     headline: {
       tickOverheadRatio16: headlineRatio === null ? null : round(headlineRatio, 3),
       tickOverheadP99Ratio16: headlineP99 === null ? null : round(headlineP99, 3),
       fixedOverheadMs16: headlineOver === null ? null : round(headlineOver, 3),
+      tickGcPauseP99Ms16: headlineGc === null ? null : round(headlineGc, 3),
     },
     detail: {
       snapshotRateHz: SNAPSHOT_RATE_HZ,
@@ -218,6 +250,7 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
       'Clients send what the client library sends: one input message per tick from its InputSender (the newest command plus 3 repeats), an ack per snapshot, a ping per second; handling them is inside the full tick (messagesIn). Socket writes are not (the clients-per-core figure covers real sockets).',
       `Headline keys take the larger of the two scenes at 16 clients. fixedOverheadMs16 is the full tick's median minus the floor's at 16 clients (goal ≤ ${GOAL_OVER_MS} ms); the per-client µs and the fixed part come from a line through the 1, 16 and 64-client excesses. A ratio goal (≤ ${GOAL_RATIO}) is set only on ${PILE_SCENE.label}: on cubes-901 the floor is a few tenths of a ms, where per-client work alone exceeds 10% of it.`,
       `cubes-901 starts at tick 0 with player 1 rolling the big cube; ${PILE_SCENE.label} starts from tick ${PILE_READY_TICK} (every drop landed). Clients are scripted bots (walk, jump, fire).`,
+      "tickGcPauseP99Ms16: GC pause ms inside one full tick (perf_hooks 'gc' entries that started during it), p99 over the measured full ticks, the larger of the two scenes at 16 clients; in-process, so it counts the room's garbage and the in-process clients' (clients-per-core's gcPauseP99Ms is the server process alone, per 1/60 s). detail.configs[].gcPauseMsPerTick has every configuration.",
       'detail.configs[].partsMedianMs splits the full tick: messagesIn (inputs, acks, pings), simStep (of which characters and physicsStep), stateHash, snapshots (quantize, delta-encode, frame), events, other; bareStepMedianRatio is the old measure (full over the bare step, characters counted as overhead).',
     ],
   };

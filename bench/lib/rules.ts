@@ -98,6 +98,29 @@ export function gcPausePerTick(fromMs: number, toMs: number, pauses: readonly Gc
   return out;
 }
 
+/** A measured span on the performance clock (ms), e.g. one server tick. */
+export interface Span {
+  startMs: number;
+  endMs: number;
+}
+
+/**
+ * GC pause time inside each span: a pause counts in the span it started in ([startMs, endMs)), whole; pauses that
+ * started between spans are left out. Spans must be sorted and not overlap.
+ */
+export function gcPauseInSpans(spans: readonly Span[], pauses: readonly GcPause[]): number[] {
+  const out = new Array<number>(spans.length).fill(0);
+  const sorted = pauses.slice().sort((a, b) => a.startTime - b.startTime);
+  let j = 0;
+  for (let i = 0; i < spans.length; i++) {
+    const s = spans[i];
+    if (i > 0 && s.startMs < spans[i - 1].endMs) throw new Error(`gcPauseInSpans: span ${i} starts before span ${i - 1} ends`);
+    while (j < sorted.length && sorted[j].startTime < s.startMs) j++;
+    while (j < sorted.length && sorted[j].startTime < s.endMs) out[i] += sorted[j++].duration;
+  }
+  return out;
+}
+
 /** Per-client cost from (clients, server CPU ms per tick) points: ms per tick = fixedMs + clients · usPerClient / 1000. */
 export interface ClientCost {
   usPerClientTick: number;

@@ -97,7 +97,7 @@ async function start(): Promise<void> {
     characters: [],
     sensors: [],
     events: [],
-    net: { rttMs: 0, snapshotsPerSecond: 0, kbpsIn: 0, interpolationDelayMs: 0, bufferDepth: 0, inputLeadTicks: 0 },
+    net: { rttMs: 0, snapshotsPerSecond: 0, kbpsIn: 0, interpolationDelayMs: 0, bufferDepth: 0, inputLeadTicks: 0, netMode: null, prediction: null },
     keyToMotion: null,
     camera: null,
   }));

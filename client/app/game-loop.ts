@@ -1,5 +1,5 @@
-// The per-frame loop of a joined room: interpolated view → world → camera → render, input at 60 Hz, HUD and the
-// test hook's state. Owns the frame timer and the cameras; the session owns the network.
+// The per-frame loop of a joined room: predicted (own simulation) or interpolated view → world → camera → render,
+// input at 60 Hz, HUD and the test hook's state. Owns the frame timer and the cameras; the session owns the network.
 import { FollowCamera, OrbitCamera } from '../render/camera.ts';
 import type { CameraView } from '../render/renderer.ts';
 import type { Renderer } from '../render/renderer.ts';
@@ -11,6 +11,7 @@ import { NetHistory } from './net-history.ts';
 import { contentBox } from './scene-extent.ts';
 import type { NetSession, SessionWelcome } from './session-types.ts';
 import type { SnapshotView } from '../../shared/protocol/snapshot-frame.ts';
+import type { BodyDescriptor } from '../../shared/sim/types.ts';
 import type { WorldView } from './world-view.ts';
 import type { Decorations } from './decorations.ts';
 import type { NameTags } from './name-tags.ts';
@@ -124,7 +125,9 @@ export class GameLoop {
   }
 
   private draw(nowMs: number, dt: number): void {
-    const f = this.session.frame(nowMs);
+    const predicted = this.session.predicted();
+    const f = predicted ? { view: predicted.view, renderTick: predicted.tick, bufferDepth: 0, delayMs: 0 } : this.session.frame(nowMs);
+    if (predicted) this.describeSpawns(predicted.view, predicted.tick);
     this.world.apply(f.view, f.renderTick);
     this.decorations?.update(f.view, nowMs);
     this.history.recordBufferDepth(nowMs, f.bufferDepth);
@@ -156,9 +159,13 @@ export class GameLoop {
     this.onFrame?.(f.view);
     s.framesRendered++;
     if (s.firstFrameMs === null && f.view) s.firstFrameMs = performance.now();
-    this.motion.frameDrawn(performance.now(), s.framesRendered, f.renderTick, mine ? [mine.position.x, mine.position.y, mine.position.z] : null);
+    const confirmed = predicted ? (this.session.prediction?.confirmedTick ?? predicted.tick) : this.session.serverTick;
+    this.motion.frameDrawn(performance.now(), s.framesRendered, f.renderTick, f.renderTick - confirmed, mine ? [mine.position.x, mine.position.y, mine.position.z] : null);
     const timing = this.timer.summary();
+    const prediction = this.session.prediction;
     this.hud.refresh(nowMs, {
+      netMode: prediction ? prediction.mode : this.welcome.netMode,
+      prediction,
       room: `${this.welcome.roomId} (${this.welcome.scenario.name})`,
       playerId: mine ? this.welcome.playerId : null,
       serverTick: this.session.serverTick,
@@ -166,12 +173,23 @@ export class GameLoop {
       inputLeadTicks: this.session.inputLeadTicks,
       roomPace: this.session.roomPace,
       snapshotsPerSecond: this.history.snapshotsPerSecond(nowMs),
-      kbpsIn: this.history.kbpsIn(nowMs),
+      kbpsIn: prediction ? this.session.kbpsIn : this.history.kbpsIn(nowMs),
       interpolationDelayMs: f.delayMs,
       bufferDepth: f.bufferDepth,
       bodies: stats.instances,
       fps: timing.fps,
       frameMs: timing.meanCpuMs,
     }, this.history);
+  }
+
+  /** Bodies the own simulation spawned that the world view has not met: describe them from the session. */
+  private describeSpawns(view: SnapshotView, tick: number): void {
+    let fresh: BodyDescriptor[] | null = null;
+    for (const id of view.ids) {
+      if (this.world.descriptor(id)) continue;
+      const d = this.session.descriptor(id);
+      if (d) (fresh ??= []).push(d);
+    }
+    if (fresh) this.world.addDescriptors(tick, fresh);
   }
 }

@@ -1,5 +1,7 @@
-// The heads-up display: server tick, RTT, snapshot rate, kbps in, interpolation delay, bodies, FPS, the net graph,
-// and the event feed. DOM text only (never HTML from the network); refreshed a few times a second, not every frame.
+// The heads-up display: net mode, server tick, RTT, snapshot rate, kbps in, interpolation delay, predicted play's
+// input delay, rollback depth, re-sim time, corrections and desyncs, bodies, FPS, the net graph, and the event feed.
+// DOM text only (never HTML from the network); refreshed a few times a second, not every frame.
+import type { PredictionStats } from '../../sdk/index.ts';
 import { drawNetGraph } from './net-graph.ts';
 import type { NetHistory } from './net-history.ts';
 
@@ -19,18 +21,34 @@ export interface HudValues {
   frameMs: number;
   playerId: number | null;
   room: string;
+  /** How the room is played: 'snapshot', or the predicting client's mode ('starting', 'predict', 'resyncing', …). */
+  netMode: string;
+  /** Predicted play's numbers; null in snapshot rooms. */
+  prediction: PredictionStats | null;
 }
 
-const ROWS: ReadonlyArray<[keyof HudValues, string, (v: HudValues) => string]> = [
+/** A HUD row; `when` limits it to predicted play or to snapshot play. */
+type Row = [key: string, label: string, format: (v: HudValues) => string, when?: 'predict' | 'snapshot'];
+
+/** The prediction numbers of a row shown only while predicting. */
+const prediction = (v: HudValues): PredictionStats => v.prediction!;
+
+const ROWS: readonly Row[] = [
   ['room', 'room', (v) => v.room],
+  ['netMode', 'net mode', (v) => (v.prediction?.mode === 'snapshot' ? `snapshot (fell back: ${v.prediction.reason ?? 'budget'})` : v.netMode)],
   ['playerId', 'player', (v) => (v.playerId === null ? 'spectating' : `#${v.playerId}`)],
   ['serverTick', 'server tick', (v) => String(v.serverTick)],
   ['rttMs', 'RTT', (v) => (v.rttMs === null ? '…' : `${v.rttMs.toFixed(0)} ms`)],
   ['inputLeadTicks', 'input lead', (v) => (v.inputLeadTicks === null ? '…' : `${v.inputLeadTicks.toFixed(2)} ticks`)],
   ['roomPace', 'room rate', (v) => (v.roomPace === null ? '…' : `${v.roomPace.ticksPerSecond} ticks/s${v.roomPace.slow ? ' (slowed: the server cannot keep up)' : ''}`)],
-  ['snapshotsPerSecond', 'snapshots', (v) => `${v.snapshotsPerSecond.toFixed(0)} /s`],
+  ['snapshotsPerSecond', 'snapshots', (v) => `${v.snapshotsPerSecond.toFixed(0)} /s`, 'snapshot'],
   ['kbpsIn', 'in', (v) => `${v.kbpsIn.toFixed(1)} kbps`],
-  ['interpolationDelayMs', 'interp delay', (v) => `${v.interpolationDelayMs.toFixed(0)} ms (${v.bufferDepth} ahead)`],
+  ['interpolationDelayMs', 'interp delay', (v) => `${v.interpolationDelayMs.toFixed(0)} ms (${v.bufferDepth} ahead)`, 'snapshot'],
+  ['inputDelay', 'input delay', (v) => `${prediction(v).inputDelayTicks} ticks`, 'predict'],
+  ['rollback', 'rollback', (v) => `${prediction(v).rollbackDepth} ticks (p99 ${prediction(v).rollbackDepthP99})`, 'predict'],
+  ['resim', 're-sim', (v) => `${prediction(v).resimMs.toFixed(2)} ms (p99 ${prediction(v).resimMsP99.toFixed(2)})`, 'predict'],
+  ['corrections', 'corrections', (v) => String(prediction(v).corrections), 'predict'],
+  ['desyncs', 'desyncs', (v) => String(prediction(v).desyncs), 'predict'],
   ['bodies', 'bodies', (v) => String(v.bodies)],
   ['fps', 'FPS', (v) => `${v.fps.toFixed(0)} (${v.frameMs.toFixed(1)} ms)`],
 ];
@@ -41,6 +59,7 @@ const FEED_LINES = 6;
 export class Hud {
   private readonly root: HTMLElement;
   private readonly cells = new Map<string, HTMLElement>();
+  private readonly rows = new Map<string, HTMLElement>();
   private readonly graph: HTMLCanvasElement;
   private readonly feed: HTMLElement;
   private readonly lines: string[] = [];
@@ -60,6 +79,7 @@ export class Hud {
       row.append(name, value);
       root.append(row);
       this.cells.set(key, value);
+      this.rows.set(key, row);
     }
     this.graph = document.createElement('canvas');
     this.graph.id = 'netgraph';
@@ -77,9 +97,12 @@ export class Hud {
   refresh(nowMs: number, values: HudValues, history: NetHistory, intervalMs = 250): void {
     if (nowMs - this.lastRefreshMs < intervalMs) return;
     this.lastRefreshMs = nowMs;
-    for (const [key, , format] of ROWS) {
+    const predicting = values.prediction !== null && values.prediction.mode !== 'snapshot';
+    for (const [key, , format, when] of ROWS) {
       const cell = this.cells.get(key);
-      if (cell) cell.textContent = format(values);
+      const shown = when === undefined || (when === 'predict') === predicting;
+      this.rows.get(key)!.hidden = !shown;
+      if (cell && shown) cell.textContent = format(values);
     }
     drawNetGraph(this.graph, history, nowMs);
   }

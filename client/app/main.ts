@@ -67,6 +67,8 @@ function hookState(): TaosState {
       interpolationDelayMs: s?.delayMs ?? 0,
       bufferDepth: s?.bufferDepth ?? 0,
       inputLeadTicks: page.session?.inputLeadTicks ?? 0,
+      netMode: page.welcome?.netMode ?? null,
+      prediction: page.session?.prediction ?? null,
     },
     keyToMotion: loop?.motion.last ? { ...loop.motion.last, count: loop.motion.count } : null,
     camera: s?.camera ? { ...s.camera, eye: [...s.camera.eye], target: [...s.camera.target] } : null,

@@ -22,6 +22,11 @@ export interface KeyToMotion {
   keyTick: number;
   /** Ticks the world drawn in the frame that showed the move had run (fractional when interpolated). */
   shownAfterTicks: number;
+  /**
+   * How far that world was ahead of what the server had confirmed (ticks): positive when the page simulated it
+   * itself (predicted play), negative when it drew the server's past (interpolated snapshots).
+   */
+  shownAheadOfServerTicks: number;
 }
 
 type Vec3 = readonly [number, number, number];
@@ -52,9 +57,10 @@ export class KeyToMotionMeter {
 
   /**
    * A frame was drawn (framesRendered counts it) showing the world after `ticks` ticks had run (fractional when
-   * interpolated), the own character at `position` (null: none drawn).
+   * interpolated), `aheadOfServerTicks` ahead of what the server had confirmed, the own character at `position`
+   * (null: none drawn).
    */
-  frameDrawn(nowMs: number, framesRendered: number, ticks: number, position: Vec3 | null): void {
+  frameDrawn(nowMs: number, framesRendered: number, ticks: number, aheadOfServerTicks: number, position: Vec3 | null): void {
     if (position === null) {
       this.lastDrawn = null;
       this.still = false;
@@ -63,7 +69,7 @@ export class KeyToMotionMeter {
     }
     const p = this.pending;
     if (p && distance(position, p.from) > MOVED_METRES) {
-      this.last = { frames: framesRendered - p.framesAtKey, ms: nowMs - p.atMs, staleFrames: p.stale, keyTick: p.keyTick, shownAfterTicks: ticks };
+      this.last = { frames: framesRendered - p.framesAtKey, ms: nowMs - p.atMs, staleFrames: p.stale, keyTick: p.keyTick, shownAfterTicks: ticks, shownAheadOfServerTicks: aheadOfServerTicks };
       this.count++;
       this.pending = null;
     } else if (p && ticks >= p.keyTick + 1) {

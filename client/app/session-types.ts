@@ -4,6 +4,7 @@ import type { SnapshotView } from '../../shared/protocol/snapshot-frame.ts';
 import type { ScenarioInfo } from '../../shared/protocol/server-messages.ts';
 import type { InputCommand } from '../../shared/sim/input.ts';
 import type { BodyDescriptor, SimEvent } from '../../shared/sim/types.ts';
+import type { PredictionStats } from '../../sdk/index.ts';
 
 /** The welcome, as the page uses it. */
 export interface SessionWelcome {
@@ -15,6 +16,15 @@ export interface SessionWelcome {
   scenario: ScenarioInfo;
   staticBodies: BodyDescriptor[];
   dynamicBodies: BodyDescriptor[];
+  /** How the room serves this client: snapshots, or its inputs for the page's own simulation (predicted play). */
+  netMode: 'snapshot' | 'predict';
+}
+
+/** The predicted world for one frame: the own simulation's present tick, smoothed. */
+export interface PredictedSessionFrame {
+  /** Ticks simulated locally (the own newest input is in it). */
+  tick: number;
+  view: SnapshotView;
 }
 
 /** The interpolated world for one frame. */
@@ -57,6 +67,14 @@ export interface NetSession {
   readonly roomPace: { ticksPerSecond: number; slow: boolean } | null;
   /** The interpolated world at `nowMs` (performance.now() clock). */
   frame(nowMs: number): SessionFrame;
+  /** The predicted world while the page runs the room's simulation itself (predict mode), else null. */
+  predicted(): PredictedSessionFrame | null;
+  /** A body's descriptor as the session knows it (while predicting: from the own simulation). */
+  descriptor(id: number): BodyDescriptor | undefined;
+  /** Predicted play's numbers (mode, input delay, rollback depth, re-sim ms, corrections, desyncs); null: snapshots. */
+  readonly prediction: PredictionStats | null;
+  /** Bytes per second received, as kilobits (every message, not only snapshots). */
+  readonly kbpsIn: number;
   /** The command to send for the coming ticks (the library sends at 60 Hz). */
   setInput(cmd: InputCommand): void;
   close(): void;

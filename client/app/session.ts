@@ -1,14 +1,25 @@
 // The page's network session: a thin adapter over the client library (sdk's NetClient) that maps its
-// events and interpolated frames onto what the page uses (session-types.ts). No wire work happens here.
-import { connect, type NetClient } from '../../sdk/index.ts';
+// events, interpolated frames and predicted frames onto what the page uses (session-types.ts). In a room whose
+// welcome says predict, the library asks for the room's simulation: only then is the physics chunk loaded.
+import { connect, type NetClient, type PredictOptions } from '../../sdk/index.ts';
 import type { InputCommand } from '../../shared/sim/input.ts';
+import { viewFromBodyStates } from './body-view.ts';
+import { loadPhysics } from './physics-loader.ts';
 import type { NetSession, SessionFrame, SessionHandlers } from './session-types.ts';
+
+/** Predicted play for the page: the room's simulation comes from the physics chunk, fetched on first use. */
+const PREDICT: PredictOptions = {
+  async createSimulation(setup) {
+    const physics = await loadPhysics();
+    return physics.Simulation.create({ scenario: physics.getScenario(setup.scenario), params: setup.params, seed: setup.seed });
+  },
+};
 
 /** Connects to `wsUrl` and reports through `handlers`; the returned session lives until close() or onClosed. */
 export function openSession(wsUrl: string, opts: { name: string; room: string | null }, handlers: SessionHandlers): NetSession {
   let client: NetClient;
   try {
-    client = connect(wsUrl, { name: opts.name, room: opts.room });
+    client = connect(wsUrl, { name: opts.name, room: opts.room, predict: PREDICT });
   } catch (err) {
     // Bad name or room id: report it like any other refusal.
     const message = (err as Error).message;
@@ -25,6 +36,7 @@ export function openSession(wsUrl: string, opts: { name: string; room: string | 
       scenario: w.scenario,
       staticBodies: w.staticBodies,
       dynamicBodies: w.dynamicBodies,
+      netMode: w.netMode,
     }),
   );
   client.on('snapshot', (s) => handlers.onSnapshot(s.tick, s.sizeBytes, s.descriptors));
@@ -55,6 +67,19 @@ export function openSession(wsUrl: string, opts: { name: string; room: string | 
       const f = client.sample(nowMs);
       return { view: f.view, renderTick: f.renderTick, bufferDepth: f.bufferDepth, delayMs: f.delayMs };
     },
+    predicted() {
+      const p = client.predicted();
+      return p ? { tick: p.tick, view: viewFromBodyStates(p.tick, p.bodies, p.characters) } : null;
+    },
+    descriptor(id: number) {
+      return client.descriptor(id);
+    },
+    get prediction() {
+      return client.stats().prediction;
+    },
+    get kbpsIn() {
+      return client.stats().kbpsIn;
+    },
     setInput(cmd: InputCommand) {
       if (client.state !== 'closed') client.setInput(cmd);
     },
@@ -72,6 +97,10 @@ function closedSession(): NetSession {
     newestInputTick: -1,
     roomPace: null,
     frame: () => ({ view: null, renderTick: 0, bufferDepth: 0, delayMs: 0 }),
+    predicted: () => null,
+    descriptor: () => undefined,
+    prediction: null,
+    kbpsIn: 0,
     setInput: () => undefined,
     close: () => undefined,
   };

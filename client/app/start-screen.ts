@@ -12,6 +12,10 @@ export interface RoomSummary {
   bodies: number;
   /** With a fleet of servers: the one that hosts the room (joining it through this page is redirected there). */
   server?: { url: string };
+  /** 'predict': the page runs the room's simulation itself; 'snapshot': it draws the server's snapshots. */
+  netMode?: string;
+  /** Why the room serves snapshots although predicted play was asked for or allowed. */
+  netModeNote?: string;
 }
 
 /** A scenario as GET /api/scenarios describes it. */
@@ -125,8 +129,10 @@ export function showStartScreen(root: HTMLElement, lobby: { rooms: RoomSummary[]
     for (const room of lobby.rooms) {
       const li = el('li', '');
       const desc = lobby.scenarios.get(room.scenario)?.description ?? '';
+      const mode = room.netMode === 'predict' ? 'predicted play' : 'snapshots';
       const host = typeof room.server?.url === 'string' ? ` · on ${hostOf(room.server.url)}` : '';
-      li.append(el('span', 'name', `${room.id} · ${room.scenario}`), el('span', 'desc', desc), el('span', 'meta', `${room.clients} connected · ${room.bodies} bodies · tick ${room.tick}${host}`));
+      li.append(el('span', 'name', `${room.id} · ${room.scenario}`), el('span', 'desc', desc), el('span', 'meta', `${room.clients} connected · ${room.bodies} bodies · tick ${room.tick} · ${mode}${host}`));
+      if (room.netModeNote) li.append(el('span', 'meta', room.netModeNote));
       const b = el('button', '', 'Join');
       b.type = 'button';
       b.dataset.room = room.id;

@@ -1,7 +1,9 @@
 // The read-only test hook `window.__taos`: every read returns a fresh, frozen snapshot of the page's state, so
 // browser tests can observe the client but never change it.
 import type { AdapterSummary } from '../render/gpu-context.ts';
+import type { PredictionStats } from '../../sdk/index.ts';
 import type { FrameTimingSummary } from './frame-timer.ts';
+import type { KeyToMotion } from './motion-meter.ts';
 
 /** A body as drawn this frame (interpolated pose). */
 export interface HookBody {
@@ -45,9 +47,20 @@ export interface TaosState {
   sensors: Array<{ sensorId: number; occupied: boolean; lit: boolean }>;
   /** Recent event lines as shown in the feed. */
   events: string[];
-  net: { rttMs: number; snapshotsPerSecond: number; kbpsIn: number; interpolationDelayMs: number; bufferDepth: number; inputLeadTicks: number };
+  net: {
+    rttMs: number;
+    snapshotsPerSecond: number;
+    kbpsIn: number;
+    interpolationDelayMs: number;
+    bufferDepth: number;
+    inputLeadTicks: number;
+    /** The room's net mode as the welcome said (null before one). */
+    netMode: 'snapshot' | 'predict' | null;
+    /** Predicted play's numbers (sdk stats().prediction) while the page runs the room's simulation; else null. */
+    prediction: PredictionStats | null;
+  };
   /** The last key → own motion measured (client/app/motion-meter.ts), and how many were measured. */
-  keyToMotion: { frames: number; ms: number; staleFrames: number; keyTick: number; shownAfterTicks: number; count: number } | null;
+  keyToMotion: (KeyToMotion & { count: number }) | null;
   /** The camera of the last frame (null before one), with the canvas size it was drawn at (device pixels). */
   camera: { eye: number[]; target: number[]; fovYRadians: number; nearMetres: number; farMetres: number; widthPx: number; heightPx: number } | null;
 }

@@ -17,9 +17,23 @@ export function joltWasmUrl(): string {
   return new URL(file, import.meta.url).href;
 }
 
-/** Fetches and compiles Jolt (once per page); every Simulation.create after it loads nothing more. */
+/**
+ * Downloads and compiles Jolt (once per page); every Simulation.create after it loads nothing more. The page fetches
+ * the .wasm itself, so a failed download is a rejected promise with a clear message, not the engine's console noise.
+ */
 export async function startPhysics(): Promise<void> {
-  setDefaultPhysicsInitOptions({ wasmUrl: joltWasmUrl() });
+  const url = joltWasmUrl();
+  let res: Response;
+  try {
+    res = await fetch(url);
+  } catch (err) {
+    throw new Error(`the physics engine could not be downloaded from ${url}: ${(err as Error).message}`, { cause: err });
+  }
+  if (!res.ok) throw new Error(`the physics engine could not be downloaded from ${url}: HTTP ${res.status}`);
+  // Jolt's browser glue loads only from a URL (it ignores wasmBinary): hand it the downloaded bytes as one, kept for
+  // the page's lifetime (every room's world instantiates from it).
+  const bytes = await res.arrayBuffer();
+  setDefaultPhysicsInitOptions({ wasmUrl: URL.createObjectURL(new Blob([bytes], { type: 'application/wasm' })) });
   await initializePhysics();
 }
 

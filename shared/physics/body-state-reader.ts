@@ -32,7 +32,10 @@ export interface BodyStates {
   flags: Uint8Array;
 }
 
-/** Reads every tracked body's pose, velocities and flags; call invalidate() whenever the body set changes. */
+/**
+ * Reads every tracked body's pose, velocities and flags. The world tells it of each body added or removed (add /
+ * remove keep the id-ordered list up to date in place); the first read, and any after invalidate(), rebuilds it.
+ */
 export class BodyStateReader {
   private readonly J: JoltModule;
   private readonly raw: ReturnType<typeof rawGetters>;
@@ -50,31 +53,80 @@ export class BodyStateReader {
     this.raw = rawGetters(J);
   }
 
-  /** The body set changed: rebuild the ordered list on the next read. */
+  /** Forgets the ordered list: the next read rebuilds it from the world's table. */
   invalidate(): void {
     this.dirty = true;
   }
 
+  /** A body joined the world: inserts it at its id's place (appends in the usual case of a fresh, highest id). */
+  add(h: BodyHandle): void {
+    if (this.dirty) return; // the next read rebuilds from the table, which already holds it
+    const n = this.count;
+    this.ensureCapacity(n + 1, n);
+    const i = n === 0 || this.ids[n - 1] < h.id ? n : lowerBound(this.ids, n, h.id);
+    if (i < n) {
+      this.ptrs.copyWithin(i + 1, i, n);
+      this.ids.copyWithin(i + 1, i, n);
+      this.baseFlags.copyWithin(i + 1, i, n);
+      this.handles.splice(i, 0, h);
+    } else {
+      this.handles.push(h);
+    }
+    this.put(i, h);
+    this.count = n + 1;
+  }
+
+  /** A body left the world: closes its gap in the list. */
+  remove(h: BodyHandle): void {
+    if (this.dirty) return;
+    const n = this.count;
+    const i = lowerBound(this.ids, n, h.id);
+    if (i >= n || this.ids[i] !== h.id) {
+      this.dirty = true; // not in the list: never expected, but a rebuild is always right
+      return;
+    }
+    this.ptrs.copyWithin(i, i + 1, n);
+    this.ids.copyWithin(i, i + 1, n);
+    this.baseFlags.copyWithin(i, i + 1, n);
+    this.handles.splice(i, 1);
+    this.count = n - 1;
+  }
+
+  /** Grows the arrays to hold `n` bodies, keeping the first `keep` entries of the list. */
+  private ensureCapacity(n: number, keep: number): void {
+    if (this.ids.length >= n) return;
+    const cap = Math.max(64, n * 2);
+    const ptrs = new Int32Array(cap);
+    const ids = new Uint32Array(cap);
+    const baseFlags = new Uint8Array(cap);
+    ptrs.set(this.ptrs.subarray(0, keep));
+    ids.set(this.ids.subarray(0, keep));
+    baseFlags.set(this.baseFlags.subarray(0, keep));
+    this.ptrs = ptrs;
+    this.ids = ids;
+    this.baseFlags = baseFlags;
+    this.states = new Float32Array(cap * BODY_STATE_STRIDE);
+    this.flags = new Uint8Array(cap);
+  }
+
+  /** Writes one body's entry at index i. */
+  private put(i: number, h: BodyHandle): void {
+    this.ids[i] = h.id;
+    this.ptrs[i] = this.J.getPointer(h.raw);
+    let f = h.motion === 'static' ? BodyFlag.Static : h.motion === 'kinematic' ? BodyFlag.Kinematic : BodyFlag.Dynamic;
+    if (h.isSensor) f |= BodyFlag.Sensor;
+    if (h.role === 'character') f |= BodyFlag.Character;
+    this.baseFlags[i] = f;
+  }
+
   private rebuild(sortedIds: readonly number[], records: ReadonlyMap<number, BodyHandle>): void {
     const n = sortedIds.length;
-    if (this.ids.length < n) {
-      const cap = Math.max(64, n * 2);
-      this.ptrs = new Int32Array(cap);
-      this.ids = new Uint32Array(cap);
-      this.baseFlags = new Uint8Array(cap);
-      this.states = new Float32Array(cap * BODY_STATE_STRIDE);
-      this.flags = new Uint8Array(cap);
-    }
+    this.ensureCapacity(n, 0);
     this.handles = new Array<BodyHandle>(n);
     for (let i = 0; i < n; i++) {
       const h = records.get(sortedIds[i])!;
       this.handles[i] = h;
-      this.ids[i] = h.id;
-      this.ptrs[i] = this.J.getPointer(h.raw);
-      let f = h.motion === 'static' ? BodyFlag.Static : h.motion === 'kinematic' ? BodyFlag.Kinematic : BodyFlag.Dynamic;
-      if (h.isSensor) f |= BodyFlag.Sensor;
-      if (h.role === 'character') f |= BodyFlag.Character;
-      this.baseFlags[i] = f;
+      this.put(i, h);
     }
     this.count = n;
     this.dirty = false;
@@ -153,4 +205,16 @@ export class BodyStateReader {
     }
     return { count: n, ids: this.ids.subarray(0, n), states: states.subarray(0, n * BODY_STATE_STRIDE), flags: flags.subarray(0, n) };
   }
+}
+
+/** First index in ids[0, n) whose value is not below `value`. */
+function lowerBound(ids: Uint32Array, n: number, value: number): number {
+  let lo = 0;
+  let hi = n;
+  while (lo < hi) {
+    const mid = (lo + hi) >>> 1;
+    if (ids[mid] < value) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo;
 }

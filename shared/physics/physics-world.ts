@@ -14,6 +14,7 @@ import { RayQueries, type RayHit } from './queries.ts';
 import { SensorHub, type SensorEvent } from './sensors.ts';
 import { BodySlots } from './body-slots.ts';
 import { BodyStateReader, type BodyStates } from './body-state-reader.ts';
+import { heapGaugeOf, type HeapGauge } from './heap-gauge.ts';
 import { buildValidatedShape, estimateShapeBytes, type JoltShape } from './shapes.ts';
 import type { BodyOptions, MotionKind } from './types.ts';
 import { ensureHeapRoom, ensureRoomForWorld, estimateStateSaveBytes, resolveWorldLimits, StepBudget, type PhysicsWorldOptions, type WorldLimits } from './world-limits.ts';
@@ -79,6 +80,8 @@ export class PhysicsWorld {
   private readonly table = new BodyTable();
   private readonly constraints: ConstraintRegistry;
   private readonly stepBudget: StepBudget;
+  /** The free-heap gauge of this world's module, shared with every world on it (see heap-gauge.ts). */
+  private readonly heapGauge: HeapGauge;
   /** Stable ids of linear-cast (CCD) bodies: each takes step memory (see world-limits.ts). */
   private readonly ccdIds = new Set<number>();
   private readonly sensors: SensorHub;
@@ -98,6 +101,7 @@ export class PhysicsWorld {
     this.maxBodies = limits.maxBodies;
     this.minFreeHeapBytes = limits.minFreeHeapBytes;
     this.stepBudget = new StepBudget(limits);
+    this.heapGauge = heapGaugeOf(J);
     const settings = new J.JoltSettings(); // freed once JoltInterface has copied it
     settings.mMaxBodies = limits.maxBodies;
     settings.mMaxBodyPairs = limits.maxBodyPairs;
@@ -141,8 +145,10 @@ export class PhysicsWorld {
     const gravity = opts.gravity ?? { x: 0, y: -9.81, z: 0 };
     checkVec3(gravity, 'PhysicsWorld.create', 'gravity');
     const J = opts.jolt ?? (opts.isolatedModule ? await createJoltInstance(opts) : await loadJolt(opts));
-    ensureRoomForWorld(J.JoltInterface.prototype.sGetFreeMemory(), limits);
-    return new PhysicsWorld(J, limits, gravity);
+    ensureRoomForWorld(heapGaugeOf(J).read(), limits);
+    const world = new PhysicsWorld(J, limits, gravity);
+    heapGaugeOf(J).read(); // the new world took heap the gauge never granted
+    return world;
   }
 
   private live(): void {
@@ -285,7 +291,8 @@ export class PhysicsWorld {
     if (this.table.size >= this.maxBodies) {
       throw new Error(`${what}: the world is full (${this.maxBodies} bodies, the maxBodies limit of PhysicsWorld.create)`);
     }
-    ensureHeapRoom(this.freeHeapBytes(), bytes, this.minFreeHeapBytes, what);
+    ensureHeapRoom(this.heapGauge.freeBytesFor(bytes, this.minFreeHeapBytes), bytes, this.minFreeHeapBytes, what);
+    this.heapGauge.grant(bytes);
   }
 
   /** Heap bytes a full state save (SaveState with contacts) of this world may take at its peak. */
@@ -296,7 +303,9 @@ export class PhysicsWorld {
   /** Throws a clear Error unless the heap can take a full state save and still keep the reserve. */
   ensureRoomForStateSave(what: string): void {
     this.live();
-    ensureHeapRoom(this.freeHeapBytes(), this.stateSaveHeapBytes(), this.minFreeHeapBytes, what);
+    const bytes = this.stateSaveHeapBytes();
+    ensureHeapRoom(this.heapGauge.freeBytesFor(bytes, this.minFreeHeapBytes), bytes, this.minFreeHeapBytes, what);
+    this.heapGauge.grant(bytes);
   }
 
   /**
@@ -308,9 +317,9 @@ export class PhysicsWorld {
     return this.stepBudget.room(kind);
   }
 
-  /** Free bytes in Jolt's fixed 128 MiB heap. */
+  /** Free bytes in Jolt's fixed 128 MiB heap (an exact reading: it walks the allocator). */
   freeHeapBytes(): number {
-    return this.jolt.JoltInterface.prototype.sGetFreeMemory();
+    return this.heapGauge.read();
   }
 
   /** Size of the world's WASM heap in bytes (fixed: 128 MiB); shared with other worlds on the same module. */
@@ -355,7 +364,7 @@ export class PhysicsWorld {
       sensor: info.opts.sensor,
     });
     this.table.add(handle);
-    this.stateReader.invalidate();
+    this.stateReader.add(handle);
     return handle;
   }
 
@@ -363,7 +372,7 @@ export class PhysicsWorld {
     this.sensors.forgetBody(handle.joltId);
     this.slots.release(handle.joltId);
     this.table.delete(handle);
-    this.stateReader.invalidate();
+    this.stateReader.remove(handle);
     if (this.ccdIds.delete(handle.id)) this.stepBudget.release('ccdBody');
     handle.removed = true;
   }

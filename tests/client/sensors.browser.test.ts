@@ -15,7 +15,9 @@ describeBrowser('sensor events on the page', () => {
 
   beforeAll(async () => {
     const built = await buildClient();
-    server = await startAppServer({ scenario: 'character-course', clientDir: built.outDir });
+    // Snapshot play: the zone lights when the server's event arrives, close behind the drawn character. (In predicted
+    // play events come from confirmed ticks, which trail the drawn world by the confirmation delay.)
+    server = await startAppServer({ scenario: 'character-course', clientDir: built.outDir, netMode: 'snapshot' });
     browser = await launchBrowser();
   });
 

@@ -252,12 +252,13 @@ export function regionChanged(a: CanvasPixels, b: CanvasPixels, fx: number, fy: 
  * rate but gets a deeper burst: the server shares this process with the test and two software-rendering browsers,
  * and when it stalls for a couple of seconds a client's on-time inputs arrive all at once.
  */
-export async function startAppServer(opts: { scenario: string; clientDir: string; params?: Record<string, number> }): Promise<RunningServer> {
+export async function startAppServer(opts: { scenario: string; clientDir: string; params?: Record<string, number>; netMode?: 'snapshot' | 'predict' | 'auto' }): Promise<RunningServer> {
   return startServer({
     port: 0,
     host: '127.0.0.1',
     scenario: opts.scenario,
     params: opts.params,
+    netMode: opts.netMode,
     clientDir: opts.clientDir,
     logger: silentLogger(),
     metrics: createMetrics({ processMetrics: false }),
@@ -266,7 +267,7 @@ export async function startAppServer(opts: { scenario: string; clientDir: string
 }
 
 /** Creates a room through the HTTP API (POST /api/rooms); throws with the server's answer on refusal. */
-export async function createRoom(baseUrl: string, body: { scenario: string; roomId: string; params?: Record<string, number> }): Promise<void> {
+export async function createRoom(baseUrl: string, body: { scenario: string; roomId: string; params?: Record<string, number>; netMode?: 'snapshot' | 'predict' | 'auto' }): Promise<void> {
   const res = await fetch(new URL('/api/rooms', baseUrl), { method: 'POST', headers: { 'content-type': 'application/json' }, body: JSON.stringify(body), signal: AbortSignal.timeout(10_000) });
   if (!res.ok) throw new Error(`creating room ${body.roomId}: ${res.status} ${await res.text()}`);
 }

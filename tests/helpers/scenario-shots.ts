@@ -62,6 +62,17 @@ async function settle(page: Page, frames: number): Promise<void> {
   await waitForHook(page, `t.framesRendered >= ${start + frames}`, 60_000);
 }
 
+/** Waits until the follow camera holds still (its easing is time-based, so a fast page needs more frames). */
+async function settleCamera(page: Page): Promise<void> {
+  let last: readonly number[] | null = null;
+  for (let i = 0; i < 60; i++) {
+    await settle(page, 4);
+    const eye = ((await readHook<TaosState>(page)).camera as HookCamera).eye;
+    if (last !== null && Math.hypot(eye[0] - last[0], eye[1] - last[1], eye[2] - last[2]) < 0.005) return;
+    last = [...eye];
+  }
+}
+
 /** Joins `roomId` (already open with `scenario`) in a fresh page and captures it. */
 export async function shootScenario(browser: BrowserSession, serverUrl: string, roomId: string, scenario: string, image: ImageFormat = 'png'): Promise<ScenarioShot> {
   const { page } = await browser.newPage();
@@ -70,6 +81,7 @@ export async function shootScenario(browser: BrowserSession, serverUrl: string, 
     await waitForHook(page, 't.connected && t.camera !== null && t.characters.some((c) => c.playerId === t.playerId)', 60_000);
     // The follow camera eases in: let it settle before measuring.
     await settle(page, 12);
+    await settleCamera(page);
     const hook = await readHook<TaosState>(page);
     const mine = hook.characters.find((c) => c.playerId === hook.playerId)!;
     const camera = hook.camera as HookCamera;

@@ -1,9 +1,10 @@
 // The package as a user gets it: `npm pack`, installed into an empty project outside the repository, with a
 // scenario written there against the public exports. It serves the scenario, two clients (the installed
 // `taos-physics/client`) play it, `run` gives the same hash twice, and the recording replays. `init` scaffolds a
-// project that installs from the tarball, passes its own test and serves its page.
+// project that installs from the tarball, passes its own test and serves its page. examples/ball-goals, its imports
+// pointed at the package, is served from the install and played with the game API (kick, score, resetBall).
 import { execFile } from 'node:child_process';
-import { readdir, rm, writeFile } from 'node:fs/promises';
+import { readdir, readFile, rm, writeFile } from 'node:fs/promises';
 import { join } from 'node:path';
 import { promisify } from 'node:util';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
@@ -30,8 +31,37 @@ const play = (name) => new Promise((resolve, reject) => {
 console.log(JSON.stringify(await Promise.all([play('ann'), play('bob')])));
 `;
 
+// Ball Goals on the installed client library: red walks at the ball holding the game's kick button until both players
+// see the score change, then asks for the ball back with the resetBall message.
+const BALL_GOALS_SCRIPT = `import { connect } from 'taos-physics/client';
+const url = process.argv[2];
+const red = connect(url, { name: 'red', reconnect: false });
+const blue = connect(url, { name: 'blue', reconnect: false });
+await Promise.all([red.whenConnected(), blue.whenConnected()]);
+red.setInput({ moveX: 0, moveZ: 127, yaw: 0, pitch: 0, buttons: 0, kick: 1 });
+const deadline = Date.now() + 20000;
+while (!(red.gameState().scoreBlue === 1 && blue.gameState().scoreBlue === 1)) {
+  if (Date.now() > deadline) throw new Error('no goal: ' + JSON.stringify(blue.gameState()));
+  await new Promise((r) => setTimeout(r, 20));
+}
+red.setInput({ moveX: 0, moveZ: 0, yaw: 0, pitch: 0, buttons: 0 });
+red.sendMessage('resetBall');
+await new Promise((r) => setTimeout(r, 200));
+console.log(JSON.stringify({ input: red.welcome.scenario.game.input, state: blue.gameState() }));
+red.close();
+blue.close();
+`;
+
+/** examples/ball-goals/game.ts as a project of its own would write it: importing the package by name. */
+async function writeBallGoals(dir: string): Promise<void> {
+  const source = await readFile(new URL('../../examples/ball-goals/game.ts', import.meta.url), 'utf8');
+  await writeFile(join(dir, 'ball-goals.ts'), source.replace("from '../../api/index.ts'", "from 'taos-physics'"));
+}
+
 beforeAll(async () => {
   pkg = await packAndInstall();
+  await writeBallGoals(pkg.app);
+  await writeFile(join(pkg.app, 'ball-goals-play.mjs'), BALL_GOALS_SCRIPT);
   await writeGameModule(pkg.app, { importFrom: 'taos-physics' });
   await writeFile(join(pkg.app, 'players.mjs'), CLIENT_SCRIPT);
   console.log(`package: tarball ${pkg.tarballBytes} bytes, install ${(pkg.installMs / 1000).toFixed(1)} s`);
@@ -74,6 +104,22 @@ describe('the packed package', () => {
     const verify = await cliIn(pkg.app, ['verify', join('rec', log), '--scenario', './game.ts', '--runs', '2', '--json']);
     expect(verify.code, verify.stderr).toBe(0);
     expect(JSON.parse(verify.stdout)).toMatchObject({ agree: true, matchesLog: true });
+  }, 90_000);
+
+  it('plays examples/ball-goals from the install: a kick scores for both players, and the recording replays', async () => {
+    const server = await serveIn(pkg.app, ['--scenario', './ball-goals.ts', '--record', 'rec-goals']);
+    let code: number | null;
+    try {
+      const played = await run(NODE24, ['ball-goals-play.mjs', server.wsUrl], { cwd: pkg.app });
+      expect(JSON.parse(played.stdout)).toEqual({ input: [{ name: 'kick', min: 0, max: 1 }], state: { scoreRed: 0, scoreBlue: 1, lastGoal: 'blue' } });
+    } finally {
+      code = await stop(server.child);
+    }
+    expect(code, server.output()).toBe(0);
+    const [log] = await readdir(join(pkg.app, 'rec-goals'));
+    const replay = await cliIn(pkg.app, ['replay', join('rec-goals', log), '--scenario', './ball-goals.ts', '--json']);
+    expect(replay.code, replay.stderr).toBe(0);
+    expect(JSON.parse(replay.stdout)).toMatchObject({ status: 'ok', scenario: 'ball-goals' });
   }, 90_000);
 
   it('exports the server, client, physics and sim entries with types, and nothing else', async () => {

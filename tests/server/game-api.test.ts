@@ -62,6 +62,22 @@ describe('game input (server and SDK)', () => {
     c.close();
   });
 
+  it('keeps named values given before the welcome, and drops (and reports) the ones the scenario does not declare', async () => {
+    h = await startHarness({ scenarios: [pushBallScenario] });
+    const c = connect(MEMORY_URL, { name: 'early', transport: h.network().transport, clock: h.clock, reconnect: false });
+    const problems: string[] = [];
+    c.on('protocolError', (m) => problems.push(m));
+    c.setInput({ ...NEUTRAL_INPUT, push: 30, kick: 1 });
+    await h.settle(() => c.state === 'connected');
+    expect(problems).toEqual(['setInput: the scenario declares no game input kick; dropped']);
+    const room = h.room();
+    const start = room.sim.tick;
+    await h.settle(() => room.sim.tick > start + 10);
+    const mine = h.history().records.flatMap((r) => r.commands).filter((cmd) => cmd.playerId === c.playerId);
+    expect(mine.at(-1)!.input.game).toEqual([0, 30]);
+    c.close();
+  });
+
   it('clamps values into the declared range and refuses a wrong count with bad-input, keeping the connection', async () => {
     h = await startHarness({ scenarios: [pushBallScenario] });
     const t = await h.join('raw');

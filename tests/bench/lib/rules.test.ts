@@ -1,7 +1,7 @@
 // Tests for the bench's pass rules and derived figures: client and room windows, GC pause per tick, the per-client
 // cost line, and the input-latency distribution that keeps unapplied (late) inputs in.
 import { describe, expect, it } from 'vitest';
-import { clientCost, gcPausePerTick, judgeClientWindow, judgeRoomsWindow, judgeSwarmProof, ladderResult, latencyDistribution, maxGap, nextLadderCount, TICK_BUDGET_MS } from '../../../bench/lib/rules.ts';
+import { clientCost, gcPauseInSpans, gcPausePerTick, judgeClientWindow, judgeRoomsWindow, judgeSwarmProof, ladderResult, latencyDistribution, maxGap, nextLadderCount, TICK_BUDGET_MS } from '../../../bench/lib/rules.ts';
 
 const goodWindow = { seconds: 8, ticks: 480, tickP99Ms: 12, snapshotsSent: 30 * 8 * 100, snapshotsSkipped: 0, droppedClients: 0 };
 
@@ -132,5 +132,26 @@ describe('rules: swarm proof and ladder search', () => {
     expect(ladderResult(new Map([[16, false]]))).toBe(0);
     expect(nextLadderCount([16, 32], new Map([[16, false]]), 16)).toBeNull();
     expect(ladderResult(new Map([[16, true], [32, false], [48, true]]))).toBe(16);
+  });
+
+  it('adds each GC pause to the span it started in and leaves out pauses between spans', () => {
+    const spans = [
+      { startMs: 10, endMs: 12 },
+      { startMs: 20, endMs: 21 },
+      { startMs: 30, endMs: 35 },
+    ];
+    const pauses = [
+      { startTime: 33, duration: 4 },
+      { startTime: 9, duration: 7 },
+      { startTime: 10, duration: 0.5 },
+      { startTime: 11.9, duration: 3 },
+      { startTime: 12, duration: 8 },
+      { startTime: 30, duration: 1 },
+    ];
+    expect(gcPauseInSpans(spans, pauses)).toEqual([3.5, 0, 5]);
+  });
+
+  it('refuses overlapping spans', () => {
+    expect(() => gcPauseInSpans([{ startMs: 0, endMs: 5 }, { startMs: 4, endMs: 6 }], [])).toThrow(/span 1 starts before span 0 ends/);
   });
 });

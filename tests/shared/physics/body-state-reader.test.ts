@@ -2,7 +2,30 @@
 // activity, and a rebuilt order after bodies come and go.
 import { describe, expect, it } from 'vitest';
 import { BodyFlag, BODY_STATE_STRIDE, CharacterController } from '../../../shared/physics/index.ts';
+import { BodyStateReader, type BodyStates } from '../../../shared/physics/body-state-reader.ts';
+import type { BodyHandle, PhysicsWorld } from '../../../shared/physics/index.ts';
 import { makeWorld, run } from '../../helpers/physics.ts';
+
+/** A deterministic stream of numbers in [0, 1) (the test must replay the same spawns and removals). */
+function lcg(seed: number): () => number {
+  let s = seed >>> 0;
+  return () => {
+    s = (Math.imul(s, 1664525) + 1013904223) >>> 0;
+    return s / 2 ** 32;
+  };
+}
+
+/** A copy of a bulk read (its arrays are views that the next read overwrites). */
+function copyOf(s: BodyStates): { ids: number[]; states: number[]; flags: number[] } {
+  return { ids: Array.from(s.ids), states: Array.from(s.states), flags: Array.from(s.flags) };
+}
+
+/** What a reader rebuilding the whole table reads from the world now. */
+function fullRebuild(w: PhysicsWorld): ReturnType<typeof copyOf> {
+  const ids = w.bodyIds();
+  const records = new Map(ids.map((id) => [id, w.getBody(id)!] as const));
+  return copyOf(new BodyStateReader(w.jolt).read(ids, records));
+}
 
 describe('body-state-reader', () => {
   it("reads exactly what each body's getters return, in ascending id order", async () => {
@@ -56,6 +79,49 @@ describe('body-state-reader', () => {
     const s = w.readBodyStates();
     expect(Array.from(s.ids)).toEqual([b.id, c.id]);
     expect(s.states[BODY_STATE_STRIDE + 1]).toBe(5);
+    w.destroy();
+  });
+
+  it('keeps the same table as a full rebuild over random spawns and removals in the world', async () => {
+    const w = await makeWorld();
+    w.addBox({ x: 20, y: 0.5, z: 20 }, { x: 0, y: -0.5, z: 0 }, null, { motion: 'static' });
+    const rand = lcg(14);
+    const live: BodyHandle[] = [];
+    w.readBodyStates(); // the first read builds the table; every change after it is incremental
+    for (let round = 0; round < 40; round++) {
+      const spawns = Math.floor(rand() * 12);
+      for (let i = 0; i < spawns; i++) {
+        const pos = { x: rand() * 20 - 10, y: 1 + rand() * 5, z: rand() * 20 - 10 };
+        live.push(rand() < 0.5 ? w.addSphere(0.2, pos) : w.addBox({ x: 0.2, y: 0.2, z: 0.2 }, pos, null, { motion: rand() < 0.2 ? 'kinematic' : 'dynamic' }));
+      }
+      const removals = Math.floor(rand() * 8);
+      for (let i = 0; i < removals && live.length > 0; i++) w.removeBody(live.splice(Math.floor(rand() * live.length), 1)[0]);
+      run(w, 2);
+      expect(copyOf(w.readBodyStates()), `round ${round}`).toEqual(fullRebuild(w));
+    }
+    w.destroy();
+  });
+
+  it('inserts bodies added out of id order at their place, as a full rebuild orders them', async () => {
+    const w = await makeWorld();
+    const bodies = Array.from({ length: 60 }, (_, i) => w.addSphere(0.2, { x: i, y: 2, z: 0 }));
+    const rand = lcg(7);
+    const reader = new BodyStateReader(w.jolt);
+    reader.read([], new Map()); // an empty table: from here on only add and remove change it
+    const inReader = new Set<BodyHandle>();
+    const order = bodies.slice().sort(() => rand() - 0.5);
+    for (const h of order) {
+      reader.add(h);
+      inReader.add(h);
+      if (rand() < 0.3) {
+        const gone = [...inReader][Math.floor(rand() * inReader.size)];
+        reader.remove(gone);
+        inReader.delete(gone);
+      }
+      const ids = [...inReader].map((b) => b.id).sort((a, b) => a - b);
+      const records = new Map([...inReader].map((b) => [b.id, b] as const));
+      expect(copyOf(reader.read(ids, records))).toEqual(copyOf(new BodyStateReader(w.jolt).read(ids, records)));
+    }
     w.destroy();
   });
 
