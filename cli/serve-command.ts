@@ -13,6 +13,7 @@ import { isNetModeRequest, type NetModeRequest } from '../server/net-mode-policy
 import { DEFAULT_CHECKPOINT_EVERY_SECONDS, DEFAULT_DURABILITY, DEFAULT_DURABILITY_INTERVAL_MS, DURABILITY_MODES, type DurabilityMode } from '../server/recorder.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import { LogFormat } from '../server/pretty-log.ts';
+import { agonesOptions, FLEET_FLAGS, fleetOptions } from './fleet-flags.ts';
 import { runServe, type ServeOptions } from './serve.ts';
 import type { ParsedArgs } from './args.ts';
 import { UsageError, type CliIo, type CommandSpec } from './command.ts';
@@ -148,6 +149,8 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
       logLevel,
       logFormat,
       ...recordingOptions(args),
+      fleet: fleetOptions(args),
+      agones: agonesOptions(args),
       ...accessOptions(args),
     },
     io,
@@ -210,6 +213,7 @@ export const serveCommand: CommandSpec = {
     { name: 'join-secret', kind: 'string', valueName: 'SECRET', description: `HMAC key of seat tokens, shared by servers that accept each other's seats (or ${JOIN_SECRET_ENV}); default random` },
     { name: 'require-seat', kind: 'boolean', description: 'admit only players whose hello carries a seat token (needs an admin token)' },
     { name: 'seat-ttl', kind: 'int', valueName: 'SECONDS', description: 'lifetime of a seat token; default 60', min: 1, max: 3600 },
+    ...FLEET_FLAGS,
     { name: 'resume-grace', kind: 'int', valueName: 'SECONDS', description: 'how long a dropped player is held for a reconnect (0: off); default 30', min: 0, max: 3600 },
   ],
   run,

@@ -42,16 +42,18 @@ export async function runServe(opts: ServeOptions, io: CliIo): Promise<number> {
   io.stdout(`taos-physics serving ${what} at ${server.url} (WebSocket ${server.wsUrl}); Ctrl+C stops\n`);
   if (opts.replayFile) io.stdout(`replay viewer for ${opts.replayFile}: ${new URL('/replay', server.url).href}\n`);
   return new Promise<number>((resolve) => {
-    const { uninstall } = installShutdown(server, {
-      logger,
-      source: opts.signals,
-      exit: (code) => {
-        uninstall();
-        removeLastResort();
-        resolve(code);
-        // Nothing should hold the event loop after a clean shutdown; if something does, do not hang forever.
-        setTimeout(() => process.exit(code), 3000).unref();
-      },
-    });
+    let done = false;
+    const exit = (code: number): void => {
+      if (done) return;
+      done = true;
+      uninstall();
+      removeLastResort();
+      resolve(code);
+      // Nothing should hold the event loop after a clean shutdown; if something does, do not hang forever.
+      setTimeout(() => process.exit(code), 3000).unref();
+    };
+    const { uninstall } = installShutdown(server, { logger, source: opts.signals, exit });
+    // A single-session server under Agones closes itself once its session is over.
+    void server.whenClosed().then(() => exit(0));
   });
 }

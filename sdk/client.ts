@@ -1,8 +1,10 @@
 // The typed network client for browsers and Node 24: connect(url, {name, room}) joins a room, keeps the clock in
 // sync, sends inputs ahead of the server tick, decodes and acks snapshots into an interpolation buffer, reports
 // events and errors, and reconnects with backoff after drops, asking for the same player back with the resume token
-// of the last welcome. One LinkSession per connection does the wire work.
+// of the last welcome; a `room-moved` bye (a fleet of servers) sends it to the server that hosts the room. One
+// LinkSession per connection does the wire work.
 import type { Clock, TimerHandle } from '../shared/clock.ts';
+import { ByeReason } from '../shared/protocol/opcodes.ts';
 import { TOKEN_PATTERN } from '../shared/protocol/limits.ts';
 import { checkPlayerName, checkRoomId } from '../shared/protocol/validation.ts';
 import type { ErrorMessage, ServerByeMessage, WelcomeMessage } from '../shared/protocol/server-messages.ts';
@@ -85,6 +87,8 @@ export interface NetClientEvents {
   bye: ServerByeMessage;
   /** A server message could not be used (undecodable, snapshot without baseline, …). */
   protocolError: string;
+  /** The room is hosted by another server: the client connects to `url` now (WebSocket URL). */
+  moved: { url: string; message: string };
   /**
    * The link dropped and another attempt is scheduled. `serverRestarting`: an attempt found nothing listening after
    * the link had worked, so the server process itself went away (a crash and restart: `serve --resume` keeps players).
@@ -123,6 +127,20 @@ export interface NetClientStats {
   prediction: PredictionStats | null;
 }
 
+/** Room moves followed in a row (without a welcome between them) before the client gives up. */
+const MAX_ROOM_MOVES = 3;
+
+/** Whether a room-moved bye's URL is one the client may follow: ws://, wss://, or the scheme it is connected with. */
+function isMoveTarget(url: string | undefined, current: string): url is string {
+  if (url === undefined) return false;
+  try {
+    const protocol = new URL(url).protocol;
+    return protocol === 'ws:' || protocol === 'wss:' || protocol === new URL(current).protocol;
+  } catch {
+    return false;
+  }
+}
+
 /** Descriptors are kept this long (ticks) after their body left the snapshots, for frames still being drawn. */
 const DESCRIPTOR_GRACE_TICKS = 180;
 
@@ -150,7 +168,8 @@ function sortedHas(ids: Uint32Array, id: number): boolean {
 
 /** A client of one room. Create it with connect(). */
 export class NetClient {
-  readonly url: string;
+  private urlValue: string;
+  private moves = 0;
   private readonly name: string;
   private readonly requestedRoom: string | null;
   private readonly clock: Clock;
@@ -188,7 +207,7 @@ export class NetClient {
       if (token !== undefined && (typeof token !== 'string' || !TOKEN_PATTERN.test(token))) throw new Error(`connect: ${key} must be a token of A-Z a-z 0-9 _ . - characters`);
     }
     this.resumeTokenValue = opts.resumeToken ?? null;
-    this.url = url;
+    this.urlValue = url;
     this.name = name.name;
     this.requestedRoom = room.room;
     this.opts = opts;
@@ -197,6 +216,11 @@ export class NetClient {
     this.policy = reconnectPolicy(opts.reconnect);
     this.random = opts.random ?? Math.random;
     this.open();
+  }
+
+  /** The server URL the client connects to now (the one given to connect(), or where a room-moved bye sent it). */
+  get url(): string {
+    return this.urlValue;
   }
 
   /** Current lifecycle state. */
@@ -395,6 +419,7 @@ export class NetClient {
     this.serverRestarting = false;
     this.resumeTokenValue = w.resumeToken;
     this.attempts = 0;
+    this.moves = 0;
     this.dynamic.clear();
     this.pendingDescriptorRemoval = [];
     for (const d of w.dynamicBodies) this.dynamic.set(d.id, d);
@@ -435,6 +460,10 @@ export class NetClient {
     const byeReason = info.bye?.reason ?? null;
     const errorCode = info.errorBeforeWelcome?.code ?? null;
     const why = info.bye ? `${info.bye.reason}: ${info.bye.message}` : info.errorBeforeWelcome ? `${info.errorBeforeWelcome.code}: ${info.errorBeforeWelcome.message}` : `closed (${info.code}${info.reason ? `: ${info.reason}` : ''})`;
+    if (byeReason === ByeReason.RoomMoved) {
+      this.followMove(info.bye?.url, why);
+      return;
+    }
     if (!isRetryable(byeReason, errorCode)) {
       this.finish({ reason: byeReason ?? errorCode ?? 'disconnected', detail: why });
       return;
@@ -458,6 +487,22 @@ export class NetClient {
       this.reconnectCount++;
       this.open();
     });
+  }
+
+  /** Connects at once to the server a room-moved bye named (a bounded number of times in a row). */
+  private followMove(url: string | undefined, why: string): void {
+    if (!isMoveTarget(url, this.urlValue)) {
+      this.finish({ reason: ByeReason.RoomMoved, detail: `${why} (no usable ws:// or wss:// URL to follow)` });
+      return;
+    }
+    if (this.moves >= MAX_ROOM_MOVES) {
+      this.finish({ reason: ByeReason.RoomMoved, detail: `moved ${this.moves} times in a row without a welcome; last: ${why}` });
+      return;
+    }
+    this.moves++;
+    this.urlValue = url;
+    this.emitter.emit('moved', { url, message: why });
+    this.open();
   }
 
   private finish(info: ClosedInfo): void {

@@ -24,6 +24,7 @@ import { OfferResult } from './input-buffer.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
 import { RateLimiter, type RateLimit } from './rate-limiter.ts';
+import { RoomMovedError } from './fleet/room-moved.ts';
 import { RoomError } from './room.ts';
 import type { RoomManager } from './room-manager.ts';
 import { LinkStats, snapshotTick } from './monitor/link-stats.ts';
@@ -407,8 +408,12 @@ export class ClientSession implements MemberSink, ResumeHolder {
     const code = error instanceof RoomError ? error.code : ErrorCode.Internal;
     const message = error instanceof Error ? error.message : String(error);
     if (!(error instanceof RoomError)) this.ctx.logger.error({ session: this.id, err: error }, 'joining a room failed');
-    const bye = code === ErrorCode.RoomFull ? ByeReason.RoomFull : code === ErrorCode.ServerFull ? ByeReason.ServerFull : code === ErrorCode.RoomNotFound ? ByeReason.RoomNotFound : ByeReason.Kicked;
     this.sendError(code, message);
+    if (error instanceof RoomMovedError) {
+      this.end(ByeReason.RoomMoved, message, CloseCode.Normal, error.host.wsUrl);
+      return;
+    }
+    const bye = code === ErrorCode.RoomFull ? ByeReason.RoomFull : code === ErrorCode.ServerFull ? ByeReason.ServerFull : code === ErrorCode.RoomNotFound ? ByeReason.RoomNotFound : ByeReason.Kicked;
     this.end(bye, message, CloseCode.TryAgainLater);
   }
 
@@ -492,13 +497,13 @@ export class ClientSession implements MemberSink, ResumeHolder {
     return true;
   }
 
-  /** Ends the session: bye with the reason (when the link is up), close, leave the room. Idempotent. */
-  end(reason: ByeReason, message: string, code: number = CloseCode.Normal): void {
+  /** Ends the session: bye with the reason (and `url` for room-moved) when the link is up, close, leave the room. Idempotent. */
+  end(reason: ByeReason, message: string, code: number = CloseCode.Normal, url?: string): void {
     if (this.state === 'closed') return;
-    if (reason !== ByeReason.ClientBye) this.send({ type: 'bye', reason, message });
+    if (reason !== ByeReason.ClientBye) this.send(url === undefined ? { type: 'bye', reason, message } : { type: 'bye', reason, message, url });
     // Misbehaviour (not a slow link or a full room): the transport stops reading the client and remembers its address.
     if (reason === ByeReason.Flood || reason === ByeReason.TooManyErrors || (reason === ByeReason.Timeout && this.state === 'hello')) this.conn.kicked?.(reason);
-    if (reason !== ByeReason.ClientBye && reason !== ByeReason.ServerShutdown && reason !== ByeReason.RoomClosed) {
+    if (reason !== ByeReason.ClientBye && reason !== ByeReason.ServerShutdown && reason !== ByeReason.RoomClosed && reason !== ByeReason.RoomMoved) {
       this.ctx.metrics.disconnects.inc({ reason });
       this.ctx.logger.info({ session: this.id, remote: this.conn.remote, reason, message }, 'disconnecting client');
     }

@@ -15,7 +15,7 @@ import { createMetrics, renderMergedMetrics, type ServerMetrics } from './metric
 import type { NetModeRequest } from './net-mode-policy.ts';
 import type { RoomInfo } from './room.ts';
 import type { HostedRoom } from './hosted-room.ts';
-import { RoomManager, type RoomFactory } from './room-manager.ts';
+import { RoomManager, type RoomDirectory, type RoomFactory } from './room-manager.ts';
 import type { WorkerPool } from './workers/worker-pool.ts';
 
 /** Options of GameServer.create. */
@@ -54,6 +54,8 @@ export interface GameServerOptions {
   beforeDefaultRoom?: (server: GameServer) => Promise<void>;
   /** Hears every resume token issued, by key (recordings keep them for --resume). */
   onResumeTokenIssued?: (room: HostedRoom, playerId: number, key: string) => void;
+  /** With a fleet (`--redis`): room ids are claimed fleet-wide here (server/fleet/). */
+  directory?: RoomDirectory;
 }
 
 /** The server core. */
@@ -111,6 +113,7 @@ export class GameServer {
       host: this.workers,
       // Rooms on this thread share its loop: on the real clock, a late room may not run its catch-up ticks back to back.
       catchUp: this.clock instanceof SystemClock ? new CatchUpBudget() : null,
+      directory: opts.directory,
     });
     this.metrics.setRoomHeapSource(() => this.roomHeaps());
     this.metrics.setRoomPaceSource(() => this.rooms.list().map((r) => ({ room: r.id, slow: r.slow })));

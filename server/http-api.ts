@@ -4,6 +4,9 @@ import type { IncomingMessage, ServerResponse } from 'node:http';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { ServerAccess } from './access/access-setup.ts';
 import { resolveParams } from '../shared/sim/scenario.ts';
+import type { FleetDirectory } from './fleet/fleet-directory.ts';
+import { cachedHost, listFleetRooms, movedAnswer, playersElsewhere } from './fleet/fleet-rooms.ts';
+import { RoomMovedError } from './fleet/room-moved.ts';
 import type { GameServer } from './game-server.ts';
 import { HttpError, HttpErrorCode } from './http-errors.ts';
 import type { CreateRoomRequest, HttpApi } from './http-server.ts';
@@ -26,6 +29,8 @@ export interface HttpApiOptions {
   staticFiles(req: IncomingMessage, res: ServerResponse): Promise<boolean>;
   /** The monitor's routes; absent: no /monitor. */
   monitor?: MonitorRoutes;
+  /** With a fleet (`--redis`): lists every server's rooms and answers for rooms hosted elsewhere. */
+  fleet?: FleetDirectory;
 }
 
 const quote = (s: string): string => JSON.stringify(s.length > 64 ? `${s.slice(0, 64)}…` : s);
@@ -33,6 +38,7 @@ const quote = (s: string): string => JSON.stringify(s.length > 64 ? `${s.slice(0
 /** A room the manager could not open, as an HTTP answer (unexpected failures are logged). */
 function creationRefused(error: unknown, logger: Logger): HttpError {
   if (error instanceof HttpError) return error;
+  if (error instanceof RoomMovedError) return movedAnswer(error);
   if (error instanceof RoomError && error.code === ErrorCode.ServerFull) return new HttpError(503, HttpErrorCode.ServerFull, error.message);
   const message = error instanceof Error ? error.message : String(error);
   logger.error({ err: error }, 'opening a room over HTTP failed');
@@ -60,8 +66,8 @@ export function createHttpApi(opts: HttpApiOptions): HttpApi {
   };
 
   return {
-    health: () => game.health(),
-    listRooms: () => game.listRooms(),
+    health: () => (opts.fleet ? { ...game.health(), fleet: opts.fleet.status() } : game.health()),
+    listRooms: () => (opts.fleet ? listFleetRooms(opts.fleet, game.listRooms()) : game.listRooms()),
     listScenarios: () =>
       scenarios.names().map((n) => {
         const s = scenarios.get(n)!;
@@ -91,13 +97,17 @@ export function createHttpApi(opts: HttpApiOptions): HttpApi {
     async deleteRoom(id) {
       if (id === DEFAULT_ROOM_ID) throw new HttpError(409, HttpErrorCode.DefaultRoom, 'the default room stays open while the server runs');
       const room = game.rooms.get(id);
+      if (!room && opts.fleet && isRoomId(id)) await opts.fleet.locate(id).catch((e: unknown) => Promise.reject(e instanceof RoomMovedError ? movedAnswer(e) : e));
       if (!room) throw new HttpError(404, HttpErrorCode.RoomNotFound, `no room ${quote(id)}`);
       const info = room.info();
       await room.close(`room ${id} was closed through the server's HTTP API`);
       opts.logger.info({ room: id, clients: info.clients }, 'room closed over HTTP');
       return info;
     },
-    roomPlayers(roomId) {
+    async roomPlayers(roomId) {
+      // A page joined to a room of another fleet server through this one asks here: the host answers for it.
+      const remote = !game.rooms.get(roomId) && opts.fleet && isRoomId(roomId) ? await playersElsewhere(opts.fleet, roomId) : null;
+      if (remote) return remote;
       if (!game.rooms.get(roomId)) throw new HttpError(404, HttpErrorCode.RoomNotFound, `no room ${quote(roomId)} is open`);
       return game
         .sessionList()
@@ -106,6 +116,8 @@ export function createHttpApi(opts: HttpApiOptions): HttpApi {
         .sort((a, b) => a.playerId - b.playerId);
     },
     reserveSeat(roomId, req) {
+      const elsewhere = !game.rooms.get(roomId) && opts.fleet ? cachedHost(opts.fleet, roomId) : null;
+      if (elsewhere) throw movedAnswer(new RoomMovedError(roomId, elsewhere));
       if (!game.rooms.get(roomId)) throw new HttpError(404, HttpErrorCode.RoomNotFound, `no room ${quote(roomId)} is open`);
       const seat = opts.access.seats.issue(roomId, req.ttlSeconds === undefined ? undefined : req.ttlSeconds * 1000);
       return { token: seat.token, roomId: seat.roomId, seatId: seat.seatId, expiresAt: new Date(seat.expiresAtMs).toISOString() };

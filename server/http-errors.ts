@@ -28,6 +28,8 @@ export const HttpErrorCode = {
   Forbidden: 'forbidden',
   MethodNotAllowed: 'method-not-allowed',
   BodyTooLarge: 'body-too-large',
+  /** The room is hosted by another server of the fleet: the answer's `url` names it. */
+  RoomMoved: 'room-moved',
   /** The rooms limit is reached, or the server has no physics memory left for another room. */
   ServerFull: 'server-full',
   ShuttingDown: 'shutting-down',
@@ -43,12 +45,15 @@ export class HttpError extends Error {
   readonly code: HttpErrorCode;
   /** Extra response headers (Allow, Retry-After). */
   readonly headers: Readonly<Record<string, string>>;
-  constructor(status: number, code: HttpErrorCode, message: string, headers: Record<string, string> = {}) {
+  /** Extra fields of the answer beside error and message (a moved room's `url`). */
+  readonly details: Readonly<Record<string, unknown>>;
+  constructor(status: number, code: HttpErrorCode, message: string, headers: Record<string, string> = {}, details: Record<string, unknown> = {}) {
     super(message);
     this.name = 'HttpError';
     this.status = status;
     this.code = code;
     this.headers = headers;
+    this.details = details;
   }
 }
 
@@ -59,9 +64,9 @@ export function sendJson(res: ServerResponse, status: number, value: unknown, he
   res.end(body);
 }
 
-/** Writes the error answer `{error: code, message}` (codes: HttpErrorCode, or access control's AccessCode). */
-export function sendError(res: ServerResponse, status: number, code: string, message: string, headers: Readonly<Record<string, string>> = {}): void {
-  sendJson(res, status, { error: code, message }, headers);
+/** Writes the error answer `{error: code, message, ...details}` (codes: HttpErrorCode, or access control's AccessCode). */
+export function sendError(res: ServerResponse, status: number, code: string, message: string, headers: Readonly<Record<string, string>> = {}, details: Readonly<Record<string, unknown>> = {}): void {
+  sendJson(res, status, { ...details, error: code, message }, headers);
 }
 
 const STATUS_TEXT: Readonly<Record<number, string>> = { 401: 'Unauthorized', 403: 'Forbidden', 429: 'Too Many Requests', 503: 'Service Unavailable' };

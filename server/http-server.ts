@@ -25,8 +25,8 @@ export interface CreateRoomRequest {
 export interface HttpApi {
   /** GET /healthz body; `ok: false` answers 503. */
   health(): { ok: boolean } & Record<string, unknown>;
-  /** GET /api/rooms. */
-  listRooms(): RoomInfo[];
+  /** GET /api/rooms (with a fleet: every server's rooms, each naming its server). */
+  listRooms(): RoomInfo[] | Promise<RoomInfo[]>;
   /** GET /api/scenarios. */
   listScenarios(): unknown[];
   /** POST /api/rooms: opens a room, or returns the open room with that id when it matches (`created: false`). */
@@ -34,7 +34,7 @@ export interface HttpApi {
   /** DELETE /api/rooms/:id: closes the room (its players get a bye saying so); resolves with its last summary. */
   deleteRoom(id: string): Promise<RoomInfo>;
   /** GET /api/rooms/ID/players: the connected players' ids and display names (what the room's feed shows anyway). */
-  roomPlayers?(roomId: string): Array<{ playerId: number; name: string }>;
+  roomPlayers?(roomId: string): Array<{ playerId: number; name: string }> | Promise<Array<{ playerId: number; name: string }>>;
   /** POST /api/rooms/ID/seats {ttlSeconds?}: a seat token for that room (an HttpError or RoomError on refusal). */
   reserveSeat(roomId: string, req: SeatRequest): SeatAnswer;
   /** GET /metrics. */
@@ -179,7 +179,7 @@ async function route(api: HttpApi, req: IncomingMessage, res: ServerResponse): P
     return;
   }
   if (path === '/api/rooms') {
-    if (isGet) sendJson(res, 200, { rooms: api.listRooms() });
+    if (isGet) sendJson(res, 200, { rooms: await api.listRooms() });
     else if (method === 'POST') {
       const { room, created } = await api.createRoom(parseCreateRoom(await readBody(req)));
       sendJson(res, created ? 201 : 200, { room });
@@ -203,14 +203,14 @@ async function route(api: HttpApi, req: IncomingMessage, res: ServerResponse): P
   const playersMatch = api.roomPlayers ? /^\/api\/rooms\/([^/]+)\/players$/.exec(path) : null;
   if (playersMatch && api.roomPlayers) {
     if (!isGet) throw notAllowed(method, path, 'GET, HEAD');
-    sendJson(res, 200, { players: api.roomPlayers(decodeSegment(playersMatch[1])) });
+    sendJson(res, 200, { players: await api.roomPlayers(decodeSegment(playersMatch[1])) });
     return;
   }
   const roomMatch = /^\/api\/rooms\/([^/]+)$/.exec(path);
   if (roomMatch) {
     const id = decodeSegment(roomMatch[1]);
     if (isGet) {
-      const room = api.listRooms().find((r) => r.id === id);
+      const room = (await api.listRooms()).find((r) => r.id === id);
       if (!room) throw new HttpError(404, HttpErrorCode.RoomNotFound, `no room ${JSON.stringify(id.slice(0, 64))}`);
       sendJson(res, 200, { room });
     } else if (method === 'DELETE') {
@@ -237,7 +237,7 @@ export function createRequestHandler(api: HttpApi, onError?: (error: unknown) =>
         res.destroy();
         return;
       }
-      if (refusal) sendError(res, refusal.status, refusal.code, refusal.message, refusal.headers);
+      if (refusal) sendError(res, refusal.status, refusal.code, refusal.message, refusal.headers, refusal.details);
       else sendError(res, 500, HttpErrorCode.Internal, 'internal error');
     });
   };

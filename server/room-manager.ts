@@ -56,6 +56,18 @@ export interface RoomSpec {
   netMode?: NetModeRequest;
 }
 
+/** Fleet-wide room ids (server/fleet/): an id is claimed before its room opens and given back when it closes. */
+export interface RoomDirectory {
+  /** Resolves once this process holds `id`; rejects with a RoomError (a RoomMovedError when another server has it). */
+  claim(id: string): Promise<void>;
+  /** Gives back the claim on `id` (its room closed, or failed to open). */
+  release(id: string): void;
+  /** Rejects with a RoomMovedError when another server hosts `id`; resolves when none does. */
+  locate(id: string): Promise<void>;
+  /** The room `id` (claimed before) is open now: the fleet may list it. */
+  opened(id: string): void;
+}
+
 /** Opens rooms somewhere other than this thread (the room workers); throws RoomError when it cannot. */
 export interface RoomHost {
   open(spec: RoomSpec): Promise<HostedRoom>;
@@ -87,6 +99,8 @@ export interface RoomManagerOptions {
   netMode?: NetModeRequest;
   /** Where rooms are opened; default: on this thread through `factory`. */
   host?: RoomHost | null;
+  /** With a fleet: where room ids are claimed fleet-wide (the default room is each process's own, never claimed). */
+  directory?: RoomDirectory;
 }
 
 /** Where a client wants to go: an existing room by id, a new room from a scenario, or the default room. */
@@ -104,6 +118,7 @@ export class RoomManager {
   private readonly rooms = new Map<string, HostedRoom>();
   private readonly creating = new Map<string, Promise<HostedRoom>>();
   private readonly emptyTimers = new Map<string, TimerHandle>();
+  private readonly openedListeners = new Set<(room: HostedRoom) => void>();
   private nextRoomNumber = 1;
   private closing = false;
 
@@ -114,6 +129,12 @@ export class RoomManager {
   /** Creates the default room. */
   async start(): Promise<HostedRoom> {
     return this.create(DEFAULT_ROOM_ID, this.opts.defaultScenario, this.opts.defaultParams ?? {});
+  }
+
+  /** Calls `fn` with every room that opens from now on (the Agones lifecycle watches players through it). */
+  onRoomOpened(fn: (room: HostedRoom) => void): () => void {
+    this.openedListeners.add(fn);
+    return () => this.openedListeners.delete(fn);
   }
 
   /** The room with this id, if open. */
@@ -167,6 +188,7 @@ export class RoomManager {
       }
       const pending = this.creating.get(req.roomId);
       if (pending) return pending;
+      if (this.opts.directory && req.roomId !== DEFAULT_ROOM_ID) await this.opts.directory.locate(req.roomId);
       // A room id that names a scenario opens a room of that scenario on demand (hello carries only a room id).
       const scenario = req.scenario ?? (this.opts.factory.hasScenario(req.roomId) ? req.roomId : undefined);
       if (scenario === undefined) {
@@ -175,10 +197,17 @@ export class RoomManager {
       return this.create(req.roomId, scenario, req.params ?? {}, req.netMode);
     }
     if (req.scenario !== undefined) {
-      let id: string;
-      do id = `${req.scenario}-${this.nextRoomNumber++}`.slice(0, 64);
-      while (this.rooms.has(id) || this.creating.has(id));
-      return this.create(id, req.scenario, req.params ?? {}, req.netMode);
+      // With a fleet another server may hold the next number already: its claim refuses ours, so try the next.
+      for (let attempt = 0; ; attempt++) {
+        let id: string;
+        do id = `${req.scenario}-${this.nextRoomNumber++}`.slice(0, 64);
+        while (this.rooms.has(id) || this.creating.has(id));
+        try {
+          return await this.create(id, req.scenario, req.params ?? {}, req.netMode);
+        } catch (error) {
+          if (!(error instanceof RoomError && error.code === ErrorCode.RoomMoved) || attempt >= 20) throw error;
+        }
+      }
     }
     const def = this.rooms.get(DEFAULT_ROOM_ID);
     if (!def) throw new RoomError(ErrorCode.RoomNotFound, 'the default room is not open');
@@ -203,6 +232,21 @@ export class RoomManager {
   }
 
   private async build(spec: RoomSpec): Promise<HostedRoom> {
+    const directory = spec.id === DEFAULT_ROOM_ID ? undefined : this.opts.directory;
+    if (!directory) return this.buildClaimed(spec);
+    await directory.claim(spec.id);
+    try {
+      const room = await this.buildClaimed(spec);
+      room.onClose(() => directory.release(spec.id));
+      directory.opened(spec.id);
+      return room;
+    } catch (error) {
+      directory.release(spec.id);
+      throw error;
+    }
+  }
+
+  private async buildClaimed(spec: RoomSpec): Promise<HostedRoom> {
     const room = this.opts.host ? await this.opts.host.open(spec) : await openRoom(spec, this.opts);
     return this.register(room);
   }
@@ -218,6 +262,14 @@ export class RoomManager {
     if (this.rooms.has(spec.id) || this.creating.has(spec.id)) throw new RoomError(ErrorCode.Internal, `room ${spec.id} is already open`);
     const netMode = predictInputs === null ? NetMode.Snapshot : (spec.netMode ?? this.opts.netMode ?? 'auto');
     const room = roomAround({ ...spec, netMode }, built, recorder, this.opts, predictInputs ?? undefined);
+    const directory = spec.id === DEFAULT_ROOM_ID ? undefined : this.opts.directory;
+    if (directory) {
+      // A resumed room takes its id back in the fleet directory (it had it before the crash; its claim lapsed).
+      directory.claim(spec.id).then(
+        () => (room.closed ? directory.release(spec.id) : room.onClose(() => directory.release(spec.id))),
+        (error: unknown) => this.opts.logger.error({ room: spec.id, err: error instanceof Error ? error.message : String(error) }, 'a resumed room could not take its id back in the fleet directory'),
+      );
+    }
     return this.register(room, () => prepare(room));
   }
 
@@ -239,6 +291,7 @@ export class RoomManager {
     room.start();
     const info = room.info();
     this.opts.logger.info({ room: id, scenario: room.scenarioName, params: room.params, netMode: info.netMode, netModeNote: info.netModeNote }, 'room opened');
+    for (const fn of this.openedListeners) fn(room);
     return room;
   }
 

@@ -14,6 +14,9 @@ import { createServerAccess, logAccess, type AccessOptions } from './access/acce
 import { SystemClock } from './clock.ts';
 import type { SessionLimits } from './client-session.ts';
 import { GameServer } from './game-server.ts';
+import type { AgonesLifecycle } from './fleet/agones-lifecycle.ts';
+import type { FleetDirectory } from './fleet/fleet-directory.ts';
+import { createFleetDirectory, joinFleet, type AgonesServerOptions, type FleetOptions } from './fleet/fleet-setup.ts';
 import { createHttpApi } from './http-api.ts';
 import { createHttpServer } from './http-server.ts';
 import { ConnectionPolicy, type ConnectionPolicyOptions } from './connection-policy.ts';
@@ -95,6 +98,10 @@ export interface StartServerOptions extends AccessOptions {
   roomWorkers?: number;
   /** Modules exporting ScenarioDefinitions the room workers offer beside the registry (file URLs; tests' own scenes). */
   workerScenarioModules?: readonly string[];
+  /** Join a fleet of servers through a Redis directory (docs/deploy.md). Default: a single process. */
+  fleet?: FleetOptions;
+  /** Run as an Agones GameServer through the SDK sidecar (docs/deploy.md). Default: not. */
+  agones?: AgonesServerOptions;
 }
 
 /** A listening server. */
@@ -111,6 +118,12 @@ export interface RunningServer {
   readonly policy: ConnectionPolicy;
   /** What --resume found: rooms reopened, logs refused (null without --resume). */
   readonly resumed: ResumeScan | null;
+  /** This process's membership of the fleet, when started with one. */
+  readonly fleet: FleetDirectory | null;
+  /** The Agones lifecycle, when run under Agones. */
+  readonly agones: AgonesLifecycle | null;
+  /** Resolves once the server has closed (by close(), or by itself when a single-session server's session is over). */
+  whenClosed(): Promise<void>;
   /** Shuts down: clients get a bye with `reason`, rooms stop, recordings end, sockets close, logs flush. Idempotent. */
   close(reason?: string): Promise<void>;
 }
@@ -150,6 +163,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   if (opts.tls) checkTls(opts.tls);
   const policy = new ConnectionPolicy(clock, { maxSockets: opts.maxConnections ?? 256, ...opts.connectionPolicy });
   const tarpit = new Tarpit(clock, opts.tarpit);
+  const fleet = createFleetDirectory(opts.fleet, clock, logger);
 
   const roomWorkers = opts.roomWorkers ?? 0;
   if (!Number.isInteger(roomWorkers) || roomWorkers < 0) throw new Error(`room workers must be a whole number ≥ 0, got ${roomWorkers}`);
@@ -199,6 +213,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     resumeGraceMs: opts.resumeGraceMs,
     seats: access.seats,
     requireSeat: access.requireSeat,
+    directory: fleet ?? undefined,
   });
 
   const stockFiles = createStaticHandler(opts.clientDir ?? DEFAULT_CLIENT_DIR);
@@ -207,7 +222,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   const staticFiles = opts.replayFile ? withReplayLog(opts.replayFile, clientFiles) : clientFiles;
   const monitor = new ServerMonitor(game);
   const http = createHttpServer(
-    createHttpApi({ game, scenarios, metrics, logger, access, staticFiles, monitor: createMonitorRoutes(monitor) }),
+    createHttpApi({ game, scenarios, metrics, logger, access, staticFiles, monitor: createMonitorRoutes(monitor), fleet: fleet ?? undefined }),
     (error) => logger.error({ err: error }, 'HTTP request failed'),
     opts.tls,
   );
@@ -245,6 +260,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     monitor.close();
     await game.close('failed to start');
     await gateway.close(0);
+    await fleet?.close();
     const e = error as NodeJS.ErrnoException;
     throw new Error(e.code === 'EADDRINUSE' ? `port ${port} on ${host} is already in use (pick another with --port)` : `cannot listen on ${host}:${port}: ${e.message}`, { cause: error });
   }
@@ -257,9 +273,11 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   const wsUrl = `${secure ? 'wss' : 'ws'}://${shownHost}:${address.port}/`;
   logger.info({ url, scenario: scenarioName, snapshotRateHz: game.snapshotRateHz, recordDir: opts.recordDir ?? null, trustProxy: opts.trustProxy ?? false }, 'server listening');
   logAccess(logger, host, access);
-
   let closing: Promise<void> | null = null;
-  return {
+  let agones: AgonesLifecycle | null = null;
+  let markClosed: () => void = () => undefined;
+  const closed = new Promise<void>((resolve) => (markClosed = resolve));
+  const running: RunningServer = {
     url,
     wsUrl,
     port: address.port,
@@ -268,10 +286,17 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     logger,
     policy,
     resumed,
+    fleet,
+    get agones() {
+      return agones;
+    },
+    whenClosed: () => closed,
     close(reason = 'server shutting down') {
       closing ??= (async () => {
         monitor.close();
         await game.close(reason);
+        await agones?.shutdown(reason);
+        await fleet?.close();
         await gateway.close(1000);
         const stopped = new Promise<void>((done) => gate.close(() => done()));
         http.close(() => undefined); // stops its connection checks (it never listened itself, so it reports that)
@@ -279,8 +304,21 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
         await stopped;
         logger.info({ reason }, 'server stopped');
         await flushLogger(logger);
+        markClosed();
       })();
       return closing;
     },
   };
+  try {
+    agones = await joinFleet(
+      { game, clock, logger, listenUrl: url, host, secure, maxRooms: opts.maxRooms ?? 6, closeServer: (reason) => void running.close(reason) },
+      fleet,
+      opts.fleet,
+      opts.agones,
+    );
+  } catch (error) {
+    await running.close('cannot start under Agones');
+    throw error;
+  }
+  return running;
 }

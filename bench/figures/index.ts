@@ -127,6 +127,14 @@ export const FIGURES: readonly FigureSpec[] = Object.freeze([
     timeLimitMs: (quick: boolean) => (quick ? min(3) : min(3)),
     module: 'figures/startup.ts',
   },
+  {
+    name: 'fleet-redirect',
+    title: 'fleet redirect',
+    detailKey: 'fleetRedirect',
+    headlineKeys: ['redirectWelcomeMs'],
+    timeLimitMs: (quick: boolean) => (quick ? min(2) : min(3)),
+    module: 'figures/fleet-redirect.ts',
+  },
 ]);
 
 /** Every figure name. */
@@ -181,4 +189,5 @@ export const HEADLINE_KEYS: readonly string[] = [
   'rollbackDepthP99',
   'resimMsP99',
   'desyncsPerHour',
+  'redirectWelcomeMs',
 ];

@@ -24,6 +24,7 @@ const MESSAGES: Readonly<Record<string, ClosedMessage>> = {
   flood: { title: 'Disconnected for flooding', hint: 'This page sent more than the server allows.', retry: true },
   'too-many-errors': { title: 'Disconnected after errors', hint: 'The server refused too many messages from this page.', retry: true },
   unreachable: { title: 'Server unreachable', hint: 'The connection dropped and could not be made again.', retry: true },
+  'room-moved': { title: 'Cannot reach the room', hint: 'The room kept moving between servers of the fleet: pick it again from the list.', retry: true },
   'bad-request': { title: 'Cannot join', hint: 'Check the room id and the name in the address.', retry: false },
 };
 

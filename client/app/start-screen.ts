@@ -10,6 +10,8 @@ export interface RoomSummary {
   clients: number;
   tick: number;
   bodies: number;
+  /** With a fleet of servers: the one that hosts the room (joining it through this page is redirected there). */
+  server?: { url: string };
   /** 'predict': the page runs the room's simulation itself; 'snapshot': it draws the server's snapshots. */
   netMode?: string;
   /** Why the room serves snapshots although predicted play was asked for or allowed. */
@@ -61,6 +63,15 @@ export async function fetchLobby(baseUrl: string, timeoutMs = 5000): Promise<{ r
 function isRoomSummary(v: unknown): v is RoomSummary {
   const r = v as RoomSummary;
   return !!r && typeof r.id === 'string' && typeof r.scenario === 'string' && typeof r.clients === 'number';
+}
+
+/** host:port of a server URL, for people (the URL itself when it does not parse). */
+function hostOf(url: string): string {
+  try {
+    return new URL(url).host;
+  } catch {
+    return url;
+  }
 }
 
 function isScenarioSummary(v: unknown): v is { name: string; description: string; params?: unknown } {
@@ -119,7 +130,8 @@ export function showStartScreen(root: HTMLElement, lobby: { rooms: RoomSummary[]
       const li = el('li', '');
       const desc = lobby.scenarios.get(room.scenario)?.description ?? '';
       const mode = room.netMode === 'predict' ? 'predicted play' : 'snapshots';
-      li.append(el('span', 'name', `${room.id} · ${room.scenario}`), el('span', 'desc', desc), el('span', 'meta', `${room.clients} connected · ${room.bodies} bodies · tick ${room.tick} · ${mode}`));
+      const host = typeof room.server?.url === 'string' ? ` · on ${hostOf(room.server.url)}` : '';
+      li.append(el('span', 'name', `${room.id} · ${room.scenario}`), el('span', 'desc', desc), el('span', 'meta', `${room.clients} connected · ${room.bodies} bodies · tick ${room.tick} · ${mode}${host}`));
       if (room.netModeNote) li.append(el('span', 'meta', room.netModeNote));
       const b = el('button', '', 'Join');
       b.type = 'button';

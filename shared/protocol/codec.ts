@@ -158,7 +158,7 @@ export function encodeServerMessage(m: ServerMessage): Uint8Array {
     case 'error':
       return packr.pack([ServerOpcode.Error, m.code, m.message]);
     case 'bye':
-      return packr.pack([ServerOpcode.Bye, m.reason, m.message]);
+      return packr.pack(m.url === undefined ? [ServerOpcode.Bye, m.reason, m.message] : [ServerOpcode.Bye, m.reason, m.message, m.url]);
     case 'checkpoint':
       return packr.pack([ServerOpcode.Checkpoint, m.tick, m.seed, m.bytes, m.inputs.map((p) => [p.playerId, p.input.moveX, p.input.moveZ, p.input.yaw, p.input.pitch, p.input.buttons, p.yawStep])]);
     case 'record': {

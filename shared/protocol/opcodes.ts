@@ -8,8 +8,9 @@
  * 4: the game API: game input values in input commands, the welcome's game schema, game state in snapshots, game
  *    messages (docs/protocol.md, docs/game-api.md).
  * 5: the pong's room pace (roomTicksPerSecond, roomSlow).
+ * 6: the bye reason `room-moved` (and error code) with the hosting server's URL as the bye's fourth element.
  */
-export const PROTOCOL_VERSION = 5;
+export const PROTOCOL_VERSION = 6;
 
 /** Opcodes of messages a client sends to the server (1–15). */
 export const ClientOpcode = {
@@ -63,6 +64,8 @@ export const ErrorCode = {
   SeatRefused: 'seat-refused',
   /** The hello's resume token is unknown, already used or past its grace window: the client joins as a new player. */
   ResumeRefused: 'resume-refused',
+  /** The room is hosted by another server of the fleet; the bye that follows carries its URL. */
+  RoomMoved: 'room-moved',
   Internal: 'internal',
 } as const;
 export type ErrorCode = (typeof ErrorCode)[keyof typeof ErrorCode];
@@ -83,6 +86,8 @@ export const ByeReason = {
   SeatRefused: 'seat-refused',
   /** Another connection resumed this player with its resume token; this one is no longer in the room. */
   Replaced: 'replaced',
+  /** The room is hosted by another server of the fleet: the bye's `url` says where (the client connects there). */
+  RoomMoved: 'room-moved',
   ClientBye: 'client-bye',
 } as const;
 export type ByeReason = (typeof ByeReason)[keyof typeof ByeReason];

@@ -231,8 +231,9 @@ function decode(value: unknown): ServerMessage {
       arity(3, 'error');
       return { type: 'error', code: str(value[1], 'error.code') as ErrorCode, message: str(value[2], 'error.message') };
     case ServerOpcode.Bye:
-      arity(3, 'bye');
-      return { type: 'bye', reason: str(value[1], 'bye.reason') as ByeReason, message: str(value[2], 'bye.message') };
+      need(value.length === 3 || value.length === 4, `bye must have 2 or 3 fields, got ${value.length - 1}`);
+      if (value.length === 3) return { type: 'bye', reason: str(value[1], 'bye.reason') as ByeReason, message: str(value[2], 'bye.message') };
+      return { type: 'bye', reason: str(value[1], 'bye.reason') as ByeReason, message: str(value[2], 'bye.message'), url: str(value[3], 'bye.url') };
     case ServerOpcode.Checkpoint:
       return decodeCheckpoint(value);
     case ServerOpcode.Record:

@@ -90,6 +90,8 @@ export interface ServerByeMessage {
   type: 'bye';
   reason: ByeReason;
   message: string;
+  /** With reason `room-moved`: the WebSocket URL (ws:// or wss://) of the server that hosts the room. */
+  url?: string;
 }
 
 /** Every server→client message. */

@@ -299,6 +299,41 @@ describe('client', () => {
     expect(v.net.connectionCount).toBe(1);
   });
 
+  it('follows a room-moved bye to the hosting server at once, with the same hello, and is welcomed there', async () => {
+    const w = world({ server: { moveTo: 'mem://host' } });
+    const host = new FakeServer(w.clock, w.net, 'mem://host');
+    host.start();
+    const client = w.open({ seat: 'seat.token-1' });
+    const moves: string[] = [];
+    client.on('moved', (m) => moves.push(m.url));
+    const welcomed = client.whenConnected();
+    w.clock.advance(300);
+    expect((await welcomed).playerId).toBe(1);
+    expect(moves).toEqual(['mem://host']);
+    expect(client.url).toBe('mem://host');
+    expect(client.stats().reconnects).toBe(0);
+    expect(host.sessions[0].hello).toMatchObject({ name: 'Ada', room: 'r1', seatToken: 'seat.token-1' });
+    client.close();
+  });
+
+  it('gives up with reason room-moved after three moves in a row, or when the URL is not a WebSocket URL', () => {
+    const w = world({ server: { moveTo: 'mem://loop' } });
+    const loop = new FakeServer(w.clock, w.net, 'mem://loop', { moveTo: URL });
+    loop.start();
+    const client = w.open();
+    const moves: string[] = [];
+    client.on('moved', (m) => moves.push(m.url));
+    w.clock.advance(1000);
+    expect(moves).toEqual(['mem://loop', URL, 'mem://loop']);
+    expect(client.closed).toEqual({ reason: 'room-moved', detail: expect.stringContaining('moved 3 times in a row without a welcome') });
+
+    const v = world({ server: { moveTo: 'http://elsewhere/' } });
+    const other = v.open();
+    v.clock.advance(1000);
+    expect(other.closed).toEqual({ reason: 'room-moved', detail: expect.stringContaining('no usable ws:// or wss:// URL to follow') });
+    expect(v.net.connectionCount).toBe(1);
+  });
+
   it('says bye on close, stops sending and never reconnects', async () => {
     const w = world();
     const client = w.open();

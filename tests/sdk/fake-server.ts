@@ -53,6 +53,8 @@ export interface FakeServerOptions {
   protocolVersion?: number;
   /** Answer hello with this error (then bye with byeReason and close). */
   refuseWith?: { code: ErrorCode; byeReason: ByeReason } | null;
+  /** Answer hello with error + bye room-moved carrying this URL (another server of a fleet hosts the room). */
+  moveTo?: string | null;
 }
 
 /** A fake room server listening on one URL. */
@@ -77,7 +79,7 @@ export class FakeServer {
   constructor(clock: ManualClock, net: MemoryNetwork, url: string, opts: FakeServerOptions = {}) {
     this.clock = clock;
     this.url = url;
-    this.o = { snapshotRateHz: 20, movingBodies: 3, protocolVersion: PROTOCOL_VERSION, refuseWith: null, ...opts };
+    this.o = { snapshotRateHz: 20, movingBodies: 3, protocolVersion: PROTOCOL_VERSION, refuseWith: null, moveTo: null, ...opts };
     net.listen(url, (peer) => this.accept(peer));
   }
 
@@ -172,6 +174,13 @@ export class FakeServer {
     s.received.push(m.type);
     switch (m.type) {
       case 'hello': {
+        if (this.o.moveTo) {
+          s.hello = m;
+          this.send(s, { type: 'error', code: ErrorCode.RoomMoved, message: 'hosted elsewhere' });
+          this.send(s, { type: 'bye', reason: ByeReason.RoomMoved, message: 'hosted elsewhere', url: this.o.moveTo });
+          s.peer.close(1000, 'room-moved');
+          return;
+        }
         if (this.o.refuseWith) {
           this.send(s, { type: 'error', code: this.o.refuseWith.code, message: `refused: ${this.o.refuseWith.code}` });
           this.kick(s, this.o.refuseWith.byeReason, 'refused');

@@ -82,7 +82,7 @@ describe('http-api', () => {
     const api = await start();
     const made = await api.createRoom({ scenario: 'test-strip', roomId: 'fast', netMode: 'predict' });
     expect(made).toMatchObject({ created: true, room: { id: 'fast', netMode: 'predict' } });
-    expect(api.listRooms().find((r) => r.id === 'fast')).toMatchObject({ netMode: 'predict' });
+    expect((await api.listRooms()).find((r) => r.id === 'fast')).toMatchObject({ netMode: 'predict' });
     expect(await api.createRoom({ scenario: 'test-strip', roomId: 'fast', netMode: 'predict' })).toMatchObject({ created: false });
     expect(await refusal(api.createRoom({ scenario: 'test-strip', roomId: 'fast', netMode: 'snapshot' }))).toEqual({
       status: 409,

@@ -48,6 +48,7 @@ describe('codec', () => {
       },
       { type: 'error', code: ErrorCode.BadInput, message: 'input.commands[0]: moveX must be finite' },
       { type: 'bye', reason: ByeReason.ServerShutdown, message: 'server shutting down' },
+      { type: 'bye', reason: ByeReason.RoomMoved, message: 'room arena is hosted by another server', url: 'ws://10.0.0.7:8080/' },
     ];
     for (const m of messages) {
       const r = decodeServerMessage(encodeServerMessage(m));

@@ -32,7 +32,8 @@ describe('server-message-decoder', () => {
     expect(errorOf(packValue([ServerOpcode.Snapshot, 'bytes', null]))).toMatch(/snapshot.bytes must be binary/);
     expect(errorOf(packValue([ServerOpcode.Snapshot, new Uint8Array(1), [[], [[1]]]]))).toMatch(/snapshot.descriptors.rows\[0\]/);
     expect(errorOf(packValue([ServerOpcode.Error, 5, 'x']))).toMatch(/error.code/);
-    expect(errorOf(packValue([ServerOpcode.Bye, 'kicked']))).toMatch(/bye must have 2 field/);
+    expect(errorOf(packValue([ServerOpcode.Bye, 'kicked']))).toMatch(/bye must have 2 or 3 fields, got 1/);
+    expect(errorOf(packValue([ServerOpcode.Bye, 'room-moved', 'elsewhere', 7]))).toMatch(/bye\.url/);
   });
 
   it('checks every welcome field, including the snapshot format and geometry', () => {
