@@ -79,15 +79,7 @@ export class ResumeTokens {
     const previous = this.byRoom.get(room)?.get(playerId);
     if (previous) this.forget(previous, 'the resume token was replaced by a newer one');
     const token = randomBytes(32).toString('base64url');
-    const entry: Entry = { key: keyOf(token), room, playerId, holder, timer: null };
-    this.byKey.set(entry.key, entry);
-    let players = this.byRoom.get(room);
-    if (!players) {
-      players = new Map();
-      this.byRoom.set(room, players);
-      room.onClose(() => this.dropRoom(room));
-    }
-    players.set(playerId, entry);
+    const entry = this.track({ key: keyOf(token), room, playerId, holder, timer: null });
     this.onIssue?.(room, playerId, entry.key);
     return token;
   }
@@ -98,16 +90,21 @@ export class ResumeTokens {
    */
   adopt(room: Room, playerId: number, key: string): void {
     if (this.byKey.has(key) || room.closed || !room.hasPlayer(playerId)) return;
-    const entry: Entry = { key, room, playerId, holder: null, timer: null };
-    this.byKey.set(key, entry);
-    let players = this.byRoom.get(room);
+    this.startGrace(this.track({ key, room, playerId, holder: null, timer: null }));
+  }
+
+  // Indexes an entry by key and by room (a room's first entry also arranges for its tokens to go when it closes).
+  private track(entry: Entry): Entry {
+    this.byKey.set(entry.key, entry);
+    let players = this.byRoom.get(entry.room);
     if (!players) {
       players = new Map();
-      this.byRoom.set(room, players);
+      this.byRoom.set(entry.room, players);
+      const room = entry.room;
       room.onClose(() => this.dropRoom(room));
     }
-    players.set(playerId, entry);
-    this.startGrace(entry);
+    players.set(entry.playerId, entry);
+    return entry;
   }
 
   /**
