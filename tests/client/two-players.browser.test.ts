@@ -30,8 +30,10 @@ describeBrowser('two players', () => {
   beforeAll(async () => {
     const built = await buildClient();
     server = await startAppServer({ scenario: 'character-course', clientDir: built.outDir });
-    // A quiet room (a single falling body) so that what moves on screen is the other player.
-    await createRoom(server.url, { scenario: 'shape-rain', roomId: 'duo', params: { count: 1 } });
+    // A quiet room (a single falling body) so that what moves on screen is the other player. A snapshot room: this
+    // test is about the interpolated view of another player (tests/client/predicted-play.browser.test.ts covers
+    // predict rooms).
+    await createRoom(server.url, { scenario: 'shape-rain', roomId: 'duo', params: { count: 1 }, netMode: 'snapshot' });
     browser = await launchBrowser();
   });
 
