@@ -68,6 +68,8 @@ export class BodyStateReader {
   /** Read every body on each read (a reference for tests; always without raw getters or a system to follow). */
   everyBody: boolean;
   private dirty = true;
+  /** Whether the world stepped since the last read (only then can an active body have moved by itself). */
+  private steppedSinceRead = true;
   private count = 0;
   private handles: BodyHandle[] = [];
   private ptrs = new Int32Array(0);
@@ -103,7 +105,9 @@ export class BodyStateReader {
     const listener = new J.BodyActivationListenerJS(); // owned by this reader; destroyed in dispose()
     const heapU32 = (): Uint32Array => J.HEAPU32;
     listener.OnBodyActivated = (bodyIdPtr: number) => {
-      this.active.set(heapU32()[bodyIdPtr >> 2] & BODY_INDEX_MASK, 1);
+      const index = heapU32()[bodyIdPtr >> 2] & BODY_INDEX_MASK;
+      this.active.set(index, 1);
+      this.stale.set(index, 1); // its Active flag changed
     };
     listener.OnBodyDeactivated = (bodyIdPtr: number) => {
       const index = heapU32()[bodyIdPtr >> 2] & BODY_INDEX_MASK;
@@ -119,6 +123,11 @@ export class BodyStateReader {
     if (this.listener === null) return;
     system.SetBodyActivationListener(null as unknown as InstanceType<JoltModule['BodyActivationListener']>);
     this.J.destroy(this.listener);
+  }
+
+  /** The world stepped: every active body may have moved. */
+  stepped(): void {
+    this.steppedSinceRead = true;
   }
 
   /** Forgets what it read: the next read reads every body (after a restored physics state). */
@@ -218,12 +227,15 @@ export class BodyStateReader {
     this.dirty = false;
   }
 
-  /** Whether slot i must be read again: awake, asleep or touched since its last read, kinematic, or a character. */
-  private mayHaveMoved(i: number): boolean {
+  /**
+   * Whether slot i must be read again: woken, fallen asleep or touched since its last read, or a character (Jolt moves
+   * their bodies outside the step); after a step also every active body and every kinematic one.
+   */
+  private mayHaveMoved(i: number, afterStep: boolean): boolean {
     const base = this.baseFlags[i];
-    if ((base & (BodyFlag.Kinematic | BodyFlag.Character)) !== 0) return true;
     const index = this.joltIndex[i];
-    return this.active.get(index) === 1 || this.stale.get(index) === 1;
+    if ((base & BodyFlag.Character) !== 0 || this.stale.get(index) === 1) return true;
+    return afterStep && ((base & BodyFlag.Kinematic) !== 0 || this.active.get(index) === 1);
   }
 
   /**
@@ -231,21 +243,22 @@ export class BodyStateReader {
    * are skipped: they have not moved since they fell asleep, and moving one (setPosition, an impulse) wakes it.
    */
   awakeOutside(sortedIds: readonly number[], records: ReadonlyMap<number, BodyHandle>, min: Vec3Like, max: Vec3Like): number[] {
-    if (this.dirty) this.rebuild(sortedIds, records);
     const out: number[] = [];
-    const heap = this.J.HEAPF32;
-    const raw = this.raw;
+    const following = this.raw !== undefined && !this.everyBody && this.listener !== null;
+    // Following the world, a read costs only what moved, and the tick's own read after it then costs nothing more.
+    const read = following ? this.read(sortedIds, records) : null;
+    if (this.dirty) this.rebuild(sortedIds, records);
     for (let i = 0; i < this.count; i++) {
       if ((this.baseFlags[i] & BodyFlag.Static) !== 0) continue;
       let x: number;
       let y: number;
       let z: number;
-      if (raw && !this.everyBody && this.listener !== null) {
+      if (read !== null) {
         if (this.active.get(this.joltIndex[i]) !== 1) continue;
-        const p = raw.pos(this.ptrs[i]) >> 2;
-        x = heap[p];
-        y = heap[p + 1];
-        z = heap[p + 2];
+        const o = i * BODY_STATE_STRIDE;
+        x = read.states[o];
+        y = read.states[o + 1];
+        z = read.states[o + 2];
       } else {
         const h = this.handles[i];
         if (!h.raw.IsActive()) continue;
@@ -273,10 +286,12 @@ export class BodyStateReader {
       return this.view();
     }
     const every = this.everyBody || this.listener === null;
+    const afterStep = this.steppedSinceRead;
+    this.steppedSinceRead = false;
     const heap = this.J.HEAPF32;
     const { pos, rot, lin, ang, active } = raw;
     for (let i = 0; i < n; i++) {
-      if (!every && !this.mayHaveMoved(i)) continue;
+      if (!every && !this.mayHaveMoved(i, afterStep)) continue;
       const b = this.ptrs[i];
       const o = i * BODY_STATE_STRIDE;
       let p = pos(b) >> 2;

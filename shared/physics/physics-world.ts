@@ -176,6 +176,7 @@ export class PhysicsWorld {
     const dt = Math.min(dtSeconds, MAX_STEP_SECONDS);
     const steps = dt > SUBSTEP_THRESHOLD_SECONDS ? 2 : 1;
     this.joltInterface.Step(dt, steps);
+    this.stateReader.stepped();
     return this.deliverSensorEvents();
   }
 
@@ -183,6 +184,7 @@ export class PhysicsWorld {
   stepFixed(): SensorEvent[] {
     this.live();
     this.joltInterface.Step(TICK_DT_SECONDS, 1);
+    this.stateReader.stepped();
     return this.deliverSensorEvents();
   }
 
