@@ -1,117 +1,30 @@
 // One room: a Simulation stepped by its own TickClock, its players and their input buffers, the exact per-tick input
 // record (stepped, recorded), and delivery of each tick's events and world frames to its members, with the snapshot
 // fan-out (snapshot-fan-out.ts) that does the members' shared encoding work once per tick.
-import type { Clock } from '../shared/clock.ts';
-import { BODY_STATE_STRIDE, BodyFlag, type Vec3Like } from '../shared/physics/index.ts';
+import { BodyFlag, type Vec3Like } from '../shared/physics/index.ts';
 import type { BodyDescriptor, SimEvent, TickInputRecord } from '../shared/sim/types.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import { GameMessageQueue } from './game-message-queue.ts';
 import { NetMode } from '../shared/protocol/predict-messages.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
-import type { CatchUpGate } from './catch-up-budget.ts';
 import type { HostedRoom, MemberSink, RoomEntry, Seat } from './hosted-room.ts';
-import { InputBuffer, OfferResult } from './input-buffer.ts';
+import { OfferResult } from './input-buffer.ts';
 import type { NetModeRequest } from './net-mode-policy.ts';
 import { PredictFeed } from './predict-feed.ts';
-import type { PlayerInputState } from '../shared/protocol/record-delta.ts';
 import { enterRoom } from './local-seat.ts';
-import type { Logger } from './logger.ts';
-import type { ServerMetrics } from './metrics.ts';
-import { RoomPace, type PaceReport } from './room-pace.ts';
+import { captureFrame } from './room-frame.ts';
+import { RoomPlayers, type ConnectedPlayer } from './room-players.ts';
+import { heldInput, RoomError, type JoinResult, type RoomInfo, type RoomOptions } from './room-options.ts';
+import { RoomPace } from './room-pace.ts';
 import { SnapshotFanOut } from './snapshot-fan-out.ts';
 import { TickClock } from './tick-clock.ts';
 import { TickTimes } from './monitor/tick-times.ts';
 
-import type { RoomMember, RoomRecorder, RoomSimulation, WorldFrame } from './room-contracts.ts';
+import type { RoomMember, RoomSimulation, WorldFrame } from './room-contracts.ts';
 
 export type { BodyStates, RoomMember, RoomRecorder, RoomSimulation, WorldFrame } from './room-contracts.ts';
-
-/** A refusal with a stable code the session forwards to the client. */
-export class RoomError extends Error {
-  readonly code: ErrorCode;
-  constructor(code: ErrorCode, message: string) {
-    super(message);
-    this.name = 'RoomError';
-    this.code = code;
-  }
-}
-
-/** Room settings. */
-export interface RoomOptions {
-  id: string;
-  scenarioName: string;
-  /** The scenario's description (for the welcome message). */
-  description?: string;
-  /** The scenario's bounds: where bodies live (the snapshot position grid). */
-  bounds?: { min: Vec3Like; max: Vec3Like };
-  params: Readonly<Record<string, number>>;
-  seed: number | string;
-  clock: Clock;
-  metrics: ServerMetrics;
-  logger: Logger;
-  /** Snapshots per second (≤ tick rate); a frame goes out on ticks where the running count crosses a whole number. */
-  snapshotRateHz: number;
-  /** Most members; joins beyond it are refused. */
-  maxClients: number;
-  /** Most bodies the world may hold; a join that would need more is refused. */
-  maxBodies: number;
-  /** Most ticks ahead of the server an input may be stamped. Default 120 (2 s). */
-  maxInputLeadTicks?: number;
-  /** Most ticks run back to back to catch up before slowing down. Default 4. */
-  maxCatchUpTicks?: number;
-  /** Stop ticking while nobody is in the room. Default true. */
-  pauseWhenEmpty?: boolean;
-  recorder?: RoomRecorder | null;
-  /** The catch-up budget of the thread the room runs on (shared by its rooms). Default none. */
-  catchUp?: CatchUpGate | null;
-  /** A resumed room's players already in the game with their last commands, for predict mode's record stream. */
-  predictInputs?: readonly PlayerInputState[];
-  /** How the room serves its members (decided by net-mode-policy.ts). Default snapshot. */
-  netMode?: NetMode;
-  /** The mode the room was asked for. Default: netMode. */
-  netModeRequested?: NetModeRequest;
-  /** Why the room serves snapshots although predict was asked for or allowed. */
-  netModeNote?: string | null;
-}
-
-/** What a successful join gives the member. */
-export interface JoinResult {
-  playerId: number;
-  /** The tick whose record carries the join. */
-  joinTick: number;
-  /** The first tick the player's inputs are applied on. */
-  firstInputTick: number;
-}
-
-/** A room's public summary (GET /api/rooms): who is in it, and its pace (ticksPerSecond, slow). */
-export interface RoomInfo extends PaceReport {
-  id: string;
-  scenario: string;
-  clients: number;
-  tick: number;
-  bodies: number;
-  params: Readonly<Record<string, number>>;
-  /** 'snapshot' or 'predict'. */
-  netMode: NetMode;
-  /** Why the room serves snapshots although predict was asked for or allowed (absent otherwise). */
-  netModeNote?: string;
-}
-
-interface Player {
-  playerId: number;
-  name: string;
-  /** Null while the player's link is down and the room holds its character for a reconnect. */
-  member: RoomMember | null;
-  inputs: InputBuffer;
-  /** True once the join has gone into a record. */
-  inWorld: boolean;
-}
-
-/** What a held player (link down, character kept) applies each tick: no movement, no buttons, same look direction. */
-export function heldInput(last: InputCommand): InputCommand {
-  return { moveX: 0, moveZ: 0, yaw: last.yaw, pitch: last.pitch, buttons: 0 };
-}
+export { heldInput, RoomError, type JoinResult, type RoomInfo, type RoomOptions } from './room-options.ts';
 
 /** A running room; build it with `new Room(sim, opts)` and call start(). */
 export class Room implements HostedRoom {
@@ -134,10 +47,8 @@ export class Room implements HostedRoom {
   /** Predict mode's record stream and checkpoints (null in snapshot mode). */
   readonly predictFeed: PredictFeed | null;
   private readonly opts: RoomOptions;
-  private readonly players = new Map<number, Player>();
-  private pendingLeaves: number[] = [];
+  private readonly players: RoomPlayers;
   private readonly gameMessages = new GameMessageQueue();
-  private nextPlayerId = 1;
   private closedReason: string | null = null;
   private snapshotAccumulator = 0;
   private cpuSecondsTotal = 0;
@@ -156,6 +67,7 @@ export class Room implements HostedRoom {
     }
     this.sim = sim;
     this.opts = opts;
+    this.players = new RoomPlayers(opts.maxInputLeadTicks ?? 120);
     this.id = opts.id;
     this.scenarioName = opts.scenarioName;
     this.description = opts.description ?? '';
@@ -214,14 +126,12 @@ export class Room implements HostedRoom {
 
   /** Players whose link is down and whose character the room holds for a reconnect. */
   get heldCount(): number {
-    let n = 0;
-    for (const p of this.players.values()) if (p.member === null) n++;
-    return n;
+    return this.players.heldCount;
   }
 
   /** Ids of the players in the room (connected or held). */
   playerIds(): number[] {
-    return [...this.players.keys()];
+    return this.players.ids();
   }
 
   /** Whether a player is in the room (connected or held). */
@@ -271,20 +181,12 @@ export class Room implements HostedRoom {
     if (this.players.size >= this.opts.maxClients) {
       throw new RoomError(ErrorCode.RoomFull, `room ${this.id} is full (${this.opts.maxClients} clients)`);
     }
-    const charactersPending = [...this.players.values()].filter((p) => !p.inWorld).length;
-    if (this.lastBodyCount + charactersPending + 1 > this.opts.maxBodies) {
+    if (this.lastBodyCount + this.players.pendingJoinCount + 1 > this.opts.maxBodies) {
       throw new RoomError(ErrorCode.RoomFull, `room ${this.id} is at its body limit (${this.opts.maxBodies} bodies): no room for another character`);
     }
-    const playerId = this.nextPlayerId++;
     const joinTick = this.sim.tick;
     const firstInputTick = joinTick + 1;
-    this.players.set(playerId, {
-      playerId,
-      name,
-      member,
-      inputs: new InputBuffer(firstInputTick, this.opts.maxInputLeadTicks ?? 120),
-      inWorld: false,
-    });
+    const playerId = this.players.add(name, member, firstInputTick);
     this.opts.metrics.players.inc();
     if (this.players.size === 1) {
       this.emptyListeners.forEach((fn) => fn(false));
@@ -299,12 +201,9 @@ export class Room implements HostedRoom {
    */
   restorePlayers(players: ReadonlyArray<{ playerId: number; name: string; last: InputCommand }>, lastPlayerId: number): void {
     for (const { playerId, name, last } of players) {
-      const inputs = new InputBuffer(this.sim.tick, this.opts.maxInputLeadTicks ?? 120);
-      inputs.suspend(heldInput(last));
-      this.players.set(playerId, { playerId, name, member: null, inputs, inWorld: true });
+      this.players.restore(playerId, name, heldInput(last), this.sim.tick, lastPlayerId);
       this.opts.metrics.players.inc();
     }
-    this.nextPlayerId = Math.max(this.nextPlayerId, lastPlayerId + 1);
   }
 
   /** Seats a member (a new player, or a held one taken back) with its welcome; rejects with a RoomError when refused. */
@@ -318,11 +217,8 @@ export class Room implements HostedRoom {
 
   /** Removes a player; the leave goes into the next tick's record (a join not yet applied is simply dropped). */
   leave(playerId: number): void {
-    const p = this.players.get(playerId);
-    if (!p) return;
-    this.players.delete(playerId);
+    if (!this.players.remove(playerId)) return;
     this.opts.metrics.players.dec();
-    if (p.inWorld) this.pendingLeaves.push(playerId);
     if (this.players.size === 0) this.emptyListeners.forEach((fn) => fn(true));
   }
 
@@ -402,20 +298,8 @@ export class Room implements HostedRoom {
     const started = performance.now();
     const cpuStarted = process.threadCpuUsage();
     const tick = this.sim.tick;
-    const leaves = this.pendingLeaves.sort((a, b) => a - b);
-    this.pendingLeaves = [];
-    const joins: TickInputRecord['joins'] = [];
-    const commands: TickInputRecord['commands'] = [];
     const m = this.opts.metrics;
-    for (const p of [...this.players.values()].sort((a, b) => a.playerId - b.playerId)) {
-      if (!p.inWorld) {
-        joins.push({ playerId: p.playerId, name: p.name });
-        continue;
-      }
-      const taken = p.inputs.take(tick);
-      if (taken.repeated) m.inputsRepeated.inc();
-      commands.push({ playerId: p.playerId, input: taken.command });
-    }
+    const { leaves, joins, commands } = this.players.takeRecord(tick, () => m.inputsRepeated.inc());
     const messages = this.gameMessages.take((id) => this.players.has(id));
     const record: TickInputRecord = messages.length > 0 ? { tick, leaves, joins, commands, messages } : { tick, leaves, joins, commands };
     this.opts.recorder?.append(record);
@@ -423,12 +307,9 @@ export class Room implements HostedRoom {
     const events = this.sim.step(record);
     m.physicsStep.observe((performance.now() - stepStarted) / 1000);
     this.opts.recorder?.afterStep(this.sim.tick, () => this.sim.stateHash());
-    for (const j of joins) {
-      const p = this.players.get(j.playerId);
-      if (p) p.inWorld = true;
-    }
+    this.players.joined(joins);
     m.ticks.inc();
-    if (this.players.size === 0 && (this.opts.pauseWhenEmpty ?? true) && this.pendingLeaves.length === 0) {
+    if (this.players.size === 0 && (this.opts.pauseWhenEmpty ?? true) && !this.players.hasPendingLeaves) {
       this.tickClock.stop();
       this.paceMeter.paused();
     }
@@ -456,23 +337,11 @@ export class Room implements HostedRoom {
       this.snapshotAccumulator -= TICK_RATE_HZ;
       const bodies = this.sim.readBodyStates();
       this.lastBodyCount = bodies.count;
-      if (this.heldCount < this.players.size) {
-        frame = {
-          tick,
-          bodies: {
-            count: bodies.count,
-            ids: bodies.ids.slice(0, bodies.count),
-            states: bodies.states.slice(0, bodies.count * BODY_STATE_STRIDE),
-            flags: bodies.flags.slice(0, bodies.count),
-          },
-          characters: this.sim.characters(),
-        };
-        if (this.opts.recorder?.release) frame.descriptors = this.captureDescriptors(frame.bodies);
-      }
+      if (this.heldCount < this.players.size) frame = captureFrame(tick, bodies, this.sim, this.opts.recorder?.release ? (id) => this.isSceneStatic(id) : null);
     }
     return () => {
       if (this.closed) return;
-      const members = [...this.players.values()].filter((p): p is Player & { member: RoomMember } => p.member !== null);
+      const members = this.players.connected();
       if (recordMessage !== null) for (const p of members) this.safely(p, () => p.member.deliverRecord?.(tick, recordMessage));
       if (events.length > 0) for (const p of members) this.safely(p, () => p.member.deliverEvents(tick, events));
       if (frame) for (const p of members) this.safely(p, () => p.member.deliverFrame(frame));
@@ -480,19 +349,8 @@ export class Room implements HostedRoom {
     };
   }
 
-  private captureDescriptors(bodies: WorldFrame['bodies']): Map<number, BodyDescriptor> {
-    const out = new Map<number, BodyDescriptor>();
-    for (let i = 0; i < bodies.count; i++) {
-      const id = bodies.ids[i];
-      if (this.isSceneStatic(id)) continue;
-      const d = this.sim.bodyDescriptor(id);
-      if (d) out.set(id, d);
-    }
-    return out;
-  }
-
   // A member that throws while taking a delivery is removed; the room and the other members carry on.
-  private safely(p: Player & { member: RoomMember }, fn: () => void): void {
+  private safely(p: ConnectedPlayer, fn: () => void): void {
     try {
       fn();
     } catch (error) {
@@ -517,9 +375,8 @@ export class Room implements HostedRoom {
     if (this.closedReason !== null) return;
     this.closedReason = reason;
     this.tickClock.stop();
-    const members = [...this.players.values()];
+    const members = this.players.clear();
     this.opts.metrics.players.dec(members.length);
-    this.players.clear();
     for (const p of members) {
       try {
         p.member?.roomClosed(reason);
@@ -548,6 +405,5 @@ export class Room implements HostedRoom {
     this.tickListeners.clear();
     this.emptyListeners.clear();
     this.closeListeners.clear();
-    this.pendingLeaves = [];
   }
 }

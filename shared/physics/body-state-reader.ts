@@ -1,11 +1,17 @@
-// The bulk body read behind PhysicsWorld.readBodyStates(): the world's bodies in stable-id order, read through
-// Jolt's raw exported bindings (no wrapper objects) into reused typed arrays. Same getters, same bits, ~2× faster.
+// The bulk body read behind PhysicsWorld.readBodyStates(): the world's bodies in stable-id order, in reused typed
+// arrays, read through Jolt's raw exported bindings (no wrapper objects). Only what can have moved is read again: a
+// body Jolt keeps active, one that fell asleep or was touched through the world since the last read, every kinematic
+// body and character; the others keep the values of their last read, which Jolt cannot have changed.
 import { BodyFlag, BODY_STATE_STRIDE } from '../physics-data/body-state.ts';
 import type { Vec3Like } from '../physics-data/vectors.ts';
 import type { BodyHandle } from './body-handle.ts';
 import type { JoltModule } from './jolt-backend.ts';
 
 type RawGetter = (bodyPtr: number) => number;
+type RawGetters = { pos: RawGetter; rot: RawGetter; lin: RawGetter; ang: RawGetter; active: RawGetter };
+
+/** Jolt's BodyID: the index bits (the rest is the sequence number and the broad-phase bit). */
+const BODY_INDEX_MASK = 0x7fffff;
 
 /** One raw export of the module (its typings do not list them), if it is a function. */
 function rawGetter(J: JoltModule, name: string): RawGetter | undefined {
@@ -14,7 +20,7 @@ function rawGetter(J: JoltModule, name: string): RawGetter | undefined {
 }
 
 /** The raw Body getters the glue code calls; undefined if this Jolt build does not export them. */
-function rawGetters(J: JoltModule): { pos: RawGetter; rot: RawGetter; lin: RawGetter; ang: RawGetter; active: RawGetter } | undefined {
+function rawGetters(J: JoltModule): RawGetters | undefined {
   const pos = rawGetter(J, '_emscripten_bind_Body_GetPosition_0');
   const rot = rawGetter(J, '_emscripten_bind_Body_GetRotation_0');
   const lin = rawGetter(J, '_emscripten_bind_Body_GetLinearVelocity_0');
@@ -32,30 +38,106 @@ export interface BodyStates {
   flags: Uint8Array;
 }
 
+/** Growable per-Jolt-body-index bytes (the index is below the system's body limit; grown on demand anyway). */
+class IndexBytes {
+  bytes = new Uint8Array(256);
+
+  get(index: number): number {
+    return index < this.bytes.length ? this.bytes[index] : 0;
+  }
+
+  set(index: number, value: number): void {
+    if (index >= this.bytes.length) {
+      const grown = new Uint8Array(Math.max(index + 1, this.bytes.length * 2));
+      grown.set(this.bytes);
+      this.bytes = grown;
+    }
+    this.bytes[index] = value;
+  }
+}
+
 /**
- * Reads every tracked body's pose, velocities and flags. The world tells it of each body added or removed (add /
- * remove keep the id-ordered list up to date in place); the first read, and any after invalidate(), rebuilds it.
+ * Reads every tracked body's pose, velocities and flags. The world tells it of each body added, removed or moved
+ * through its API (add / remove / touch) and of every restored physics state (invalidate); Jolt's activation
+ * listener tells it which bodies are awake and which fell asleep. The first read, and any after invalidate(), reads
+ * every body.
  */
 export class BodyStateReader {
   private readonly J: JoltModule;
-  private readonly raw: ReturnType<typeof rawGetters>;
+  private readonly raw: RawGetters | undefined;
+  /** Read every body on each read (a reference for tests; always without raw getters or a system to follow). */
+  everyBody: boolean;
   private dirty = true;
+  /** Whether the world stepped since the last read (only then can an active body have moved by itself). */
+  private steppedSinceRead = true;
   private count = 0;
   private handles: BodyHandle[] = [];
   private ptrs = new Int32Array(0);
   private ids = new Uint32Array(0);
   private baseFlags = new Uint8Array(0);
+  /** Per slot: the Jolt body index (into `active` and `stale`). */
+  private joltIndex = new Int32Array(0);
   private states = new Float32Array(0);
   private flags = new Uint8Array(0);
+  /** By Jolt body index: 1 while Jolt keeps the body active (from the activation listener). */
+  private readonly active = new IndexBytes();
+  /** By Jolt body index: 1 when the body may have changed since its last read without being active now. */
+  private readonly stale = new IndexBytes();
+  private result: BodyStates = { count: 0, ids: new Uint32Array(0), states: new Float32Array(0), flags: new Uint8Array(0) };
+  private readonly listener: InstanceType<JoltModule['BodyActivationListenerJS']> | null;
 
-  constructor(J: JoltModule) {
+  /** `system`: the world's, to follow its bodies' activity; without it (or raw getters) every read reads every body. */
+  constructor(J: JoltModule, system?: InstanceType<JoltModule['PhysicsSystem']>) {
     this.J = J;
     this.raw = rawGetters(J);
+    this.everyBody = this.raw === undefined || system === undefined;
+    if (this.raw === undefined || system === undefined) {
+      this.listener = null;
+      return;
+    }
+    // Every restored physics state (checkpoints, fast state buffers) goes through the system's RestoreState: the
+    // values of the last read no longer hold, so the next read reads every body.
+    const restoreState = system.RestoreState.bind(system);
+    system.RestoreState = (stream: InstanceType<JoltModule['StateRecorder']>, filter?: InstanceType<JoltModule['StateRecorderFilter']>) => {
+      this.dirty = true;
+      return restoreState(stream, filter);
+    };
+    const listener = new J.BodyActivationListenerJS(); // owned by this reader; destroyed in dispose()
+    const heapU32 = (): Uint32Array => J.HEAPU32;
+    listener.OnBodyActivated = (bodyIdPtr: number) => {
+      const index = heapU32()[bodyIdPtr >> 2] & BODY_INDEX_MASK;
+      this.active.set(index, 1);
+      this.stale.set(index, 1); // its Active flag changed
+    };
+    listener.OnBodyDeactivated = (bodyIdPtr: number) => {
+      const index = heapU32()[bodyIdPtr >> 2] & BODY_INDEX_MASK;
+      this.active.set(index, 0);
+      this.stale.set(index, 1); // Jolt zeroes its velocities as it falls asleep
+    };
+    system.SetBodyActivationListener(listener);
+    this.listener = listener;
   }
 
-  /** Forgets the ordered list: the next read rebuilds it from the world's table. */
+  /** Unhooks and frees the activation listener (before the system goes). */
+  dispose(system: InstanceType<JoltModule['PhysicsSystem']>): void {
+    if (this.listener === null) return;
+    system.SetBodyActivationListener(null as unknown as InstanceType<JoltModule['BodyActivationListener']>);
+    this.J.destroy(this.listener);
+  }
+
+  /** The world stepped: every active body may have moved. */
+  stepped(): void {
+    this.steppedSinceRead = true;
+  }
+
+  /** Forgets what it read: the next read reads every body (after a restored physics state). */
   invalidate(): void {
     this.dirty = true;
+  }
+
+  /** A body was moved, pushed or teleported through the world's API: the next read reads it. */
+  touch(h: BodyHandle): void {
+    this.stale.set(h.joltId & BODY_INDEX_MASK, 1);
   }
 
   /** A body joined the world: inserts it at its id's place (appends in the usual case of a fresh, highest id). */
@@ -68,6 +150,9 @@ export class BodyStateReader {
       this.ptrs.copyWithin(i + 1, i, n);
       this.ids.copyWithin(i + 1, i, n);
       this.baseFlags.copyWithin(i + 1, i, n);
+      this.joltIndex.copyWithin(i + 1, i, n);
+      this.flags.copyWithin(i + 1, i, n);
+      this.states.copyWithin((i + 1) * BODY_STATE_STRIDE, i * BODY_STATE_STRIDE, n * BODY_STATE_STRIDE);
       this.handles.splice(i, 0, h);
     } else {
       this.handles.push(h);
@@ -78,6 +163,9 @@ export class BodyStateReader {
 
   /** A body left the world: closes its gap in the list. */
   remove(h: BodyHandle): void {
+    const index = h.joltId & BODY_INDEX_MASK;
+    this.active.set(index, 0);
+    this.stale.set(index, 0);
     if (this.dirty) return;
     const n = this.count;
     const i = lowerBound(this.ids, n, h.id);
@@ -88,6 +176,9 @@ export class BodyStateReader {
     this.ptrs.copyWithin(i, i + 1, n);
     this.ids.copyWithin(i, i + 1, n);
     this.baseFlags.copyWithin(i, i + 1, n);
+    this.joltIndex.copyWithin(i, i + 1, n);
+    this.flags.copyWithin(i, i + 1, n);
+    this.states.copyWithin(i * BODY_STATE_STRIDE, (i + 1) * BODY_STATE_STRIDE, n * BODY_STATE_STRIDE);
     this.handles.splice(i, 1);
     this.count = n - 1;
   }
@@ -96,20 +187,20 @@ export class BodyStateReader {
   private ensureCapacity(n: number, keep: number): void {
     if (this.ids.length >= n) return;
     const cap = Math.max(64, n * 2);
-    const ptrs = new Int32Array(cap);
-    const ids = new Uint32Array(cap);
-    const baseFlags = new Uint8Array(cap);
-    ptrs.set(this.ptrs.subarray(0, keep));
-    ids.set(this.ids.subarray(0, keep));
-    baseFlags.set(this.baseFlags.subarray(0, keep));
-    this.ptrs = ptrs;
-    this.ids = ids;
-    this.baseFlags = baseFlags;
-    this.states = new Float32Array(cap * BODY_STATE_STRIDE);
-    this.flags = new Uint8Array(cap);
+    const grow = <T extends Int32Array | Uint32Array | Uint8Array | Float32Array>(old: T, make: (size: number) => T, stride = 1): T => {
+      const next = make(cap * stride);
+      next.set(old.subarray(0, keep * stride));
+      return next;
+    };
+    this.ptrs = grow(this.ptrs, (s) => new Int32Array(s));
+    this.ids = grow(this.ids, (s) => new Uint32Array(s));
+    this.baseFlags = grow(this.baseFlags, (s) => new Uint8Array(s));
+    this.joltIndex = grow(this.joltIndex, (s) => new Int32Array(s));
+    this.flags = grow(this.flags, (s) => new Uint8Array(s));
+    this.states = grow(this.states, (s) => new Float32Array(s), BODY_STATE_STRIDE);
   }
 
-  /** Writes one body's entry at index i. */
+  /** Writes one body's entry at index i; its state is read on the next read. */
   private put(i: number, h: BodyHandle): void {
     this.ids[i] = h.id;
     this.ptrs[i] = this.J.getPointer(h.raw);
@@ -117,6 +208,10 @@ export class BodyStateReader {
     if (h.isSensor) f |= BodyFlag.Sensor;
     if (h.role === 'character') f |= BodyFlag.Character;
     this.baseFlags[i] = f;
+    const index = h.joltId & BODY_INDEX_MASK;
+    this.joltIndex[i] = index;
+    if (this.raw) this.active.set(index, (f & BodyFlag.Static) === 0 && this.raw.active(this.ptrs[i]) ? 1 : 0);
+    this.stale.set(index, 1);
   }
 
   private rebuild(sortedIds: readonly number[], records: ReadonlyMap<number, BodyHandle>): void {
@@ -133,25 +228,37 @@ export class BodyStateReader {
   }
 
   /**
+   * Whether slot i must be read again: woken, fallen asleep or touched since its last read, or a character (Jolt moves
+   * their bodies outside the step); after a step also every active body and every kinematic one.
+   */
+  private mayHaveMoved(i: number, afterStep: boolean): boolean {
+    const base = this.baseFlags[i];
+    const index = this.joltIndex[i];
+    if ((base & BodyFlag.Character) !== 0 || this.stale.get(index) === 1) return true;
+    return afterStep && ((base & BodyFlag.Kinematic) !== 0 || this.active.get(index) === 1);
+  }
+
+  /**
    * Ids (ascending) of awake non-static bodies whose position is outside [min, max] or not finite. Sleeping bodies
    * are skipped: they have not moved since they fell asleep, and moving one (setPosition, an impulse) wakes it.
    */
   awakeOutside(sortedIds: readonly number[], records: ReadonlyMap<number, BodyHandle>, min: Vec3Like, max: Vec3Like): number[] {
-    if (this.dirty) this.rebuild(sortedIds, records);
     const out: number[] = [];
-    const heap = this.J.HEAPF32;
+    const following = this.raw !== undefined && !this.everyBody && this.listener !== null;
+    // Following the world, a read costs only what moved, and the tick's own read after it then costs nothing more.
+    const read = following ? this.read(sortedIds, records) : null;
+    if (this.dirty) this.rebuild(sortedIds, records);
     for (let i = 0; i < this.count; i++) {
       if ((this.baseFlags[i] & BodyFlag.Static) !== 0) continue;
       let x: number;
       let y: number;
       let z: number;
-      if (this.raw) {
-        const b = this.ptrs[i];
-        if (!this.raw.active(b)) continue;
-        const p = this.raw.pos(b) >> 2;
-        x = heap[p];
-        y = heap[p + 1];
-        z = heap[p + 2];
+      if (read !== null) {
+        if (this.active.get(this.joltIndex[i]) !== 1) continue;
+        const o = i * BODY_STATE_STRIDE;
+        x = read.states[o];
+        y = read.states[o + 1];
+        z = read.states[o + 2];
       } else {
         const h = this.handles[i];
         if (!h.raw.IsActive()) continue;
@@ -163,7 +270,7 @@ export class BodyStateReader {
     return out;
   }
 
-  /** Reads all bodies (ids ascending) into the reused arrays. */
+  /** Reads the bodies that may have moved (all of them when `everyBody` or after invalidate()), ids ascending. */
   read(sortedIds: readonly number[], records: ReadonlyMap<number, BodyHandle>): BodyStates {
     if (this.dirty) this.rebuild(sortedIds, records);
     const n = this.count;
@@ -176,34 +283,51 @@ export class BodyStateReader {
         h.readStateInto(states, i * BODY_STATE_STRIDE);
         flags[i] = this.baseFlags[i] | ((this.baseFlags[i] & BodyFlag.Static) === 0 && h.raw.IsActive() ? BodyFlag.Active : 0);
       }
-    } else {
-      const heap = this.J.HEAPF32;
-      const { pos, rot, lin, ang, active } = raw;
-      for (let i = 0; i < n; i++) {
-        const b = this.ptrs[i];
-        const o = i * BODY_STATE_STRIDE;
-        let p = pos(b) >> 2;
-        states[o] = heap[p];
-        states[o + 1] = heap[p + 1];
-        states[o + 2] = heap[p + 2];
-        p = rot(b) >> 2;
-        states[o + 3] = heap[p];
-        states[o + 4] = heap[p + 1];
-        states[o + 5] = heap[p + 2];
-        states[o + 6] = heap[p + 3];
-        p = lin(b) >> 2;
-        states[o + 7] = heap[p];
-        states[o + 8] = heap[p + 1];
-        states[o + 9] = heap[p + 2];
-        p = ang(b) >> 2;
-        states[o + 10] = heap[p];
-        states[o + 11] = heap[p + 1];
-        states[o + 12] = heap[p + 2];
-        const base = this.baseFlags[i];
-        flags[i] = (base & BodyFlag.Static) === 0 && active(b) ? base | BodyFlag.Active : base;
-      }
+      return this.view();
     }
-    return { count: n, ids: this.ids.subarray(0, n), states: states.subarray(0, n * BODY_STATE_STRIDE), flags: flags.subarray(0, n) };
+    const every = this.everyBody || this.listener === null;
+    const afterStep = this.steppedSinceRead;
+    this.steppedSinceRead = false;
+    const heap = this.J.HEAPF32;
+    const { pos, rot, lin, ang, active } = raw;
+    for (let i = 0; i < n; i++) {
+      if (!every && !this.mayHaveMoved(i, afterStep)) continue;
+      const b = this.ptrs[i];
+      const o = i * BODY_STATE_STRIDE;
+      let p = pos(b) >> 2;
+      states[o] = heap[p];
+      states[o + 1] = heap[p + 1];
+      states[o + 2] = heap[p + 2];
+      p = rot(b) >> 2;
+      states[o + 3] = heap[p];
+      states[o + 4] = heap[p + 1];
+      states[o + 5] = heap[p + 2];
+      states[o + 6] = heap[p + 3];
+      p = lin(b) >> 2;
+      states[o + 7] = heap[p];
+      states[o + 8] = heap[p + 1];
+      states[o + 9] = heap[p + 2];
+      p = ang(b) >> 2;
+      states[o + 10] = heap[p];
+      states[o + 11] = heap[p + 1];
+      states[o + 12] = heap[p + 2];
+      const base = this.baseFlags[i];
+      const index = this.joltIndex[i];
+      const isActive = (base & BodyFlag.Static) === 0 && (every ? active(b) !== 0 : this.active.get(index) === 1);
+      flags[i] = isActive ? base | BodyFlag.Active : base;
+      this.stale.set(index, 0);
+    }
+    return this.view();
+  }
+
+  /** The reused result object; new views only when the count or the arrays changed. */
+  private view(): BodyStates {
+    const n = this.count;
+    const r = this.result;
+    if (r.count !== n || r.ids.buffer !== this.ids.buffer) {
+      this.result = { count: n, ids: this.ids.subarray(0, n), states: this.states.subarray(0, n * BODY_STATE_STRIDE), flags: this.flags.subarray(0, n) };
+    }
+    return this.result;
   }
 }
 

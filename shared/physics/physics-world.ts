@@ -58,6 +58,8 @@ export interface WorldInternals {
   bodyByJoltId(joltId: number): BodyHandle | undefined;
   /** Restores the id counter (checkpoint restore). */
   setNextBodyId(next: number): void;
+  /** Makes every bulk read read every body (true) instead of only those that can have moved (tests compare both). */
+  setEveryBodyReads(every: boolean): void;
 }
 
 let internalsOf: (world: PhysicsWorld) => WorldInternals;
@@ -116,7 +118,7 @@ export class PhysicsWorld {
     this.bodyInterface = this.system.GetBodyInterface();
     this.constraints = new ConstraintRegistry(J, this.system);
     this.slots = new BodySlots(J, this.bodyInterface, this.maxBodies); // owned here; disposed in destroy()
-    this.stateReader = new BodyStateReader(J);
+    this.stateReader = new BodyStateReader(J, this.system);
     this.sensors = new SensorHub(J, this.system, {
       stableIdOf: (joltId) => this.table.byJoltId(joltId)?.id,
       isSensorJoltId: (joltId) => this.table.isSensorJoltId(joltId),
@@ -131,6 +133,9 @@ export class PhysicsWorld {
       bodyByJoltId: (joltId) => this.table.byJoltId(joltId),
       setNextBodyId: (next) => {
         this.nextBodyId = next;
+      },
+      setEveryBodyReads: (every) => {
+        this.stateReader.everyBody = every;
       },
     };
     this.setGravity(gravity.x, gravity.y, gravity.z);
@@ -171,6 +176,7 @@ export class PhysicsWorld {
     const dt = Math.min(dtSeconds, MAX_STEP_SECONDS);
     const steps = dt > SUBSTEP_THRESHOLD_SECONDS ? 2 : 1;
     this.joltInterface.Step(dt, steps);
+    this.stateReader.stepped();
     return this.deliverSensorEvents();
   }
 
@@ -178,6 +184,7 @@ export class PhysicsWorld {
   stepFixed(): SensorEvent[] {
     this.live();
     this.joltInterface.Step(TICK_DT_SECONDS, 1);
+    this.stateReader.stepped();
     return this.deliverSensorEvents();
   }
 
@@ -411,6 +418,7 @@ export class PhysicsWorld {
     this.clear();
     this.destroyed = true;
     this.slots.dispose();
+    this.stateReader.dispose(this.system);
     this.jolt.destroy(this.joltInterface);
     this.sensors.dispose();
   }
@@ -456,27 +464,37 @@ export class PhysicsWorld {
 
   /** Sets a body's linear velocity (m/s) and wakes it (not for static bodies). */
   setLinearVelocity(b: BodyHandle | number, v: Vec3Like): void {
-    motion.setLinearVelocity(this, this.handleOf(b, 'setLinearVelocity'), v);
+    const h = this.handleOf(b, 'setLinearVelocity');
+    motion.setLinearVelocity(this, h, v);
+    this.stateReader.touch(h);
   }
 
   /** Sets a body's angular velocity (rad/s) and wakes it (not for static bodies). */
   setAngularVelocity(b: BodyHandle | number, v: Vec3Like): void {
-    motion.setAngularVelocity(this, this.handleOf(b, 'setAngularVelocity'), v);
+    const h = this.handleOf(b, 'setAngularVelocity');
+    motion.setAngularVelocity(this, h, v);
+    this.stateReader.touch(h);
   }
 
   /** Applies an impulse (N·s) to a dynamic body at its centre of mass, or at a world point, and wakes it. */
   addImpulse(b: BodyHandle | number, impulse: Vec3Like, worldPoint?: Vec3Like): void {
-    motion.addImpulse(this, this.handleOf(b, 'addImpulse'), impulse, worldPoint);
+    const h = this.handleOf(b, 'addImpulse');
+    motion.addImpulse(this, h, impulse, worldPoint);
+    this.stateReader.touch(h);
   }
 
   /** Moves a kinematic body so it reaches pos/rot after dtSeconds (velocity-based: pushes dynamics). */
   moveKinematic(b: BodyHandle | number, pos: Vec3Like, rot: QuatLike | null, dtSeconds: number = TICK_DT_SECONDS): void {
-    motion.moveKinematic(this, this.handleOf(b, 'moveKinematic'), pos, rot, dtSeconds);
+    const h = this.handleOf(b, 'moveKinematic');
+    motion.moveKinematic(this, h, pos, rot, dtSeconds);
+    this.stateReader.touch(h);
   }
 
   /** Teleports a body (no velocity change); activates it unless static. */
   setPosition(b: BodyHandle | number, pos: Vec3Like, rot: QuatLike | null = null): void {
-    motion.setPosition(this, this.handleOf(b, 'setPosition'), pos, rot);
+    const h = this.handleOf(b, 'setPosition');
+    motion.setPosition(this, h, pos, rot);
+    this.stateReader.touch(h);
   }
 
   // ── queries ───────────────────────────────────────────────────────────────────────────────────────────────

@@ -89,6 +89,11 @@ export class BulletList {
     return this.bullets.some((b) => b.bodyId === bodyId);
   }
 
+  /** The live bullets themselves, in list order (read-only: for hashing without copies). */
+  live(): readonly Readonly<Bullet>[] {
+    return this.bullets;
+  }
+
   /** Copies of the live bullets. */
   snapshot(): Bullet[] {
     return this.bullets.map((b) => ({ ...b }));

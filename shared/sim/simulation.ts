@@ -14,7 +14,7 @@ import { Prng } from './prng.ts';
 import { makeScenarioContext } from './scenario-context.ts';
 import { resolveParams, type ParamValues, type ScenarioDefinition, type ScenarioInstance } from './scenario.ts';
 import { assertRegistryInSync, type SimBase, type SimCore } from './sim-core.ts';
-import { dumpState, firstDivergence, hashDump, type Divergence, type StateDump } from './state-dump.ts';
+import { dumpState, firstDivergence, hashState, type Divergence, type StateDump } from './state-dump.ts';
 import { runTick } from './tick.ts';
 import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from './types.ts';
 
@@ -187,7 +187,7 @@ export class Simulation {
   stateHash(): string {
     const core = this.live();
     if (this.hashCache && this.hashCache.tick === core.tick) return this.hashCache.hash;
-    const hash = hashDump(dumpState(core, false, this.readBodyStates()));
+    const hash = hashState(core, this.readBodyStates());
     this.hashCache = { tick: core.tick, hash };
     return hash;
   }

@@ -136,6 +136,60 @@ export function hashDump(d: StateDump): string {
   return h.hex();
 }
 
+/**
+ * The state hash of a simulation core straight from its state: the very words hashDump(dumpState(core)) hashes, in
+ * the same order, without building the dump (no copies; `bodies` is this tick's bulk read).
+ */
+export function hashState(core: SimCore, bodies: BodyStates): string {
+  const h = new Hasher64();
+  h.word(core.tick);
+  const [s0, s1, s2, s3] = core.rng.getState();
+  h.word(s0).word(s1).word(s2).word(s3);
+  h.word(core.world.nextId).word(core.players.joinCount);
+  const n = bodies.ids.length;
+  const { ids, states, flags } = bodies;
+  h.word(n).words(ids);
+  h.words(new Uint32Array(states.buffer, states.byteOffset, n * BODY_STATE_STRIDE));
+  for (let i = 0; i < n; i += 4) h.word(flags[i] | (flags[i + 1] << 8) | (flags[i + 2] << 16) | (flags[i + 3] << 24));
+  const players = core.players.inOrder();
+  h.word(players.length);
+  for (const p of players) {
+    const c = p.controller;
+    const pos = c.position;
+    h.word(p.playerId).word(p.joinIndex).word(p.bodyId).string(p.name);
+    const i = p.input;
+    h.word(i.moveX).word(i.moveZ).word(i.yaw).word(i.pitch).word(i.buttons).word(p.nextFireTick);
+    if (i.game !== undefined && i.game.length > 0) {
+      h.word(i.game.length);
+      for (const v of i.game) h.word(v);
+    }
+    h.f32Bits(pos.x).f32Bits(pos.y).f32Bits(pos.z);
+    h.f64Bits(c.velocity.x).f64Bits(c.velocity.y).f64Bits(c.velocity.z);
+    h.word(GROUND_CODES[c.groundState]).f64Bits(c.pendingJumpSpeed);
+  }
+  const bullets = core.bullets.live();
+  h.word(bullets.length);
+  for (const b of bullets) h.word(b.bodyId).word(b.ownerId).word(b.expireTick);
+  const scenario = core.instance.saveState ? core.instance.saveState() : [];
+  h.word(scenario.length);
+  for (const v of scenario) h.f64Bits(v); // low word, then high: as hashDump's little-endian Float64Array view
+  const game = core.gameState.list();
+  if (game.length > 0) {
+    h.word(game.length);
+    for (const v of game) {
+      if (typeof v === 'number') h.word(0).f64Bits(v);
+      else h.word(1).string(v);
+    }
+  }
+  h.word(core.carriedSensor.length * 3);
+  for (const e of core.carriedSensor) h.word(e.kind === 'enter' ? 1 : 0).word(e.sensorId).word(e.otherId);
+  const rows = worldInternals(core.world).sensorHub.exportOverlaps();
+  const overlapRows = Math.floor(rows.length / 5);
+  h.word(overlapRows * 3);
+  for (let r = 0; r < overlapRows; r++) h.word(rows[r * 5 + 2]).word(rows[r * 5 + 3]).word(rows[r * 5 + 4]);
+  return h.hex();
+}
+
 /** Where two dumps first differ: null when identical. Bodies are compared in id order, field by field. */
 export interface Divergence {
   /** Which part differs first, in hash order. */

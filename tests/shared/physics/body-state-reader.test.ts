@@ -1,7 +1,7 @@
 // Tests of the bulk body read: the same values as each handle's getters, ids ascending, flags per motion kind and
 // activity, and a rebuilt order after bodies come and go.
 import { describe, expect, it } from 'vitest';
-import { BodyFlag, BODY_STATE_STRIDE, CharacterController } from '../../../shared/physics/index.ts';
+import { BodyFlag, BODY_STATE_STRIDE, CharacterController, FastStateBuffer } from '../../../shared/physics/index.ts';
 import { BodyStateReader, type BodyStates } from '../../../shared/physics/body-state-reader.ts';
 import type { BodyHandle, PhysicsWorld } from '../../../shared/physics/index.ts';
 import { makeWorld, run } from '../../helpers/physics.ts';
@@ -139,6 +139,27 @@ describe('body-state-reader', () => {
     w.setPosition(faller, { x: -30, y: 0.3, z: 0 });
     expect(w.awakeBodiesOutside(min, max)).toEqual([faller.id]);
     expect([ground.id, farStatic.id, sleeper.id].some((id) => w.awakeBodiesOutside(min, max).includes(id))).toBe(false);
+    w.destroy();
+  });
+  it('reads again a sleeping or static body moved through the world, and every body after a restored state', async () => {
+    const w = await makeWorld();
+    const ground = w.addBox({ x: 10, y: 0.5, z: 10 }, { x: 0, y: -0.5, z: 0 }, null, { motion: 'static' });
+    const sleeper = w.addSphere(0.3, { x: 3, y: 0.3, z: 0 });
+    const buffer = new FastStateBuffer(w.jolt);
+    run(w, 120);
+    expect(sleeper.isActive()).toBe(false);
+    buffer.saveWorld(w);
+    w.readBodyStates();
+    // A static body teleports without waking; a velocity too small to wake a body still changes it.
+    w.setPosition(ground, { x: 1, y: -0.5, z: 0 });
+    w.setLinearVelocity(sleeper, { x: 1e-7, y: 0, z: 0 });
+    expect(sleeper.isActive()).toBe(false);
+    expect(copyOf(w.readBodyStates())).toEqual(fullRebuild(w));
+    expect(w.readBodyStates().states[0]).toBe(1);
+    buffer.restoreWorld(w);
+    expect(copyOf(w.readBodyStates())).toEqual(fullRebuild(w));
+    expect(w.readBodyStates().states[0]).toBe(0);
+    buffer.dispose();
     w.destroy();
   });
 });

@@ -2,7 +2,8 @@
 // a missing body is named as the first difference.
 import { describe, expect, it } from 'vitest';
 import { firstDivergence, hashDump } from '../../../shared/sim/state-dump.ts';
-import { botRecords, makeSim, runHashes } from './helpers/sim-helpers.ts';
+import { pushBallScenario } from './helpers/game-scenarios.ts';
+import { botRecords, IDLE, makeSim, record, runHashes } from './helpers/sim-helpers.ts';
 
 describe('state-dump', () => {
   it('finds no difference between two identical sessions and hashes their dumps like stateHash', async () => {
@@ -15,6 +16,24 @@ describe('state-dump', () => {
     expect(hashDump(a.dumpState())).toBe(a.stateHash());
     a.destroy();
     b.destroy();
+  });
+
+  it('streams, tick by tick, the hash of the full dump, with sensors, scenario state and game state in play', async () => {
+    const arena = await makeSim();
+    for (const r of botRecords(240, { bots: 3 })) {
+      arena.step(r);
+      expect(arena.stateHash(), `test-arena tick ${arena.tick}`).toBe(hashDump(arena.dumpState()));
+    }
+    expect(arena.dumpState().overlaps.length + arena.dumpState().scenarioState.length).toBeGreaterThan(0);
+    arena.destroy();
+    const ball = await makeSim(pushBallScenario);
+    ball.step(record(0, { joins: [{ playerId: 1, name: 'p' }] }));
+    for (let t = 1; t <= 40; t++) {
+      ball.step(record(t, { commands: [{ playerId: 1, input: { ...IDLE, game: [t % 2, t % 3 === 0 ? 50 : 0] } }] }));
+      expect(ball.stateHash(), `test-push-ball tick ${ball.tick}`).toBe(hashDump(ball.dumpState()));
+    }
+    expect(ball.gameState().pushTicks).toBeGreaterThan(0);
+    ball.destroy();
   });
 
   it('names the first body whose state differs, and which field', async () => {

@@ -1,0 +1,35 @@
+// A room's world frame: the snapshot tick's bodies and characters copied out of the simulation (the simulation's read
+// buffers are reused next tick), with the descriptors a held-back frame needs.
+import { BODY_STATE_STRIDE } from '../shared/physics/index.ts';
+import type { BodyDescriptor } from '../shared/sim/types.ts';
+import type { BodyStates, RoomSimulation, WorldFrame } from './room-contracts.ts';
+
+/**
+ * Copies `bodies` (this tick's read) and the characters into a frame. `isSceneStatic`: given when the frame may leave
+ * after its tick (a durable recording holds it back), to capture the descriptors of its other bodies as of now.
+ */
+export function captureFrame(tick: number, bodies: BodyStates, sim: RoomSimulation, isSceneStatic: ((id: number) => boolean) | null): WorldFrame {
+  const frame: WorldFrame = {
+    tick,
+    bodies: {
+      count: bodies.count,
+      ids: bodies.ids.slice(0, bodies.count),
+      states: bodies.states.slice(0, bodies.count * BODY_STATE_STRIDE),
+      flags: bodies.flags.slice(0, bodies.count),
+    },
+    characters: sim.characters(),
+  };
+  if (isSceneStatic) frame.descriptors = captureDescriptors(frame.bodies, sim, isSceneStatic);
+  return frame;
+}
+
+function captureDescriptors(bodies: BodyStates, sim: RoomSimulation, isSceneStatic: (id: number) => boolean): Map<number, BodyDescriptor> {
+  const out = new Map<number, BodyDescriptor>();
+  for (let i = 0; i < bodies.count; i++) {
+    const id = bodies.ids[i];
+    if (isSceneStatic(id)) continue;
+    const d = sim.bodyDescriptor(id);
+    if (d) out.set(id, d);
+  }
+  return out;
+}
