@@ -55,10 +55,12 @@ export class PlayerInbox {
     this.resyncLimiter = new RateLimiter(ctx.clock, ctx.limits.resyncs ?? DEFAULT_RESYNC_LIMIT);
   }
 
-  /** Offers each command of an input message for its tick. */
+  /** Takes the ack an input message carries, then offers each of its commands for its tick. */
   input(msg: InputMessage): InboxVerdict {
     const { seat, ctx } = this;
     if (!this.inputLimiter.take()) return { flood: `more than ${ctx.limits.inputs.perSecond} input messages per second` };
+    // Checked by the decoder like an ack message's tick, and as good on its own: refused commands do not void it.
+    if (msg.ackTick !== undefined) this.ack(msg.ackTick);
     const fit = fitInputMessage(msg, seat.welcome.scenario.game?.input ?? []);
     if (!fit.ok) return { refuse: ErrorCode.BadInput, message: fit.error };
     if (fit.clamped > 0) ctx.metrics.inputsClamped.inc(fit.clamped);
