@@ -75,7 +75,7 @@ export interface NetClientEvents {
   state: NetClientState;
   /** A (re)connection was welcomed; descriptors and interpolation start afresh. */
   welcome: WelcomeMessage;
-  /** A snapshot was decoded (and acked). */
+  /** A snapshot was decoded (its ack rides on the next input message, or goes alone within a tick). */
   snapshot: SnapshotInfo;
   /** Simulation events, in tick order. */
   events: SimEvent[];

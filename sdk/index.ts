@@ -6,7 +6,7 @@ export { RealClock } from './clock.ts';
 export type { PlayerInput } from './game-input.ts';
 export type { GameStateChange } from './game-state.ts';
 export { ClockSync, type ClockSyncOptions, type PongSample } from './clock-sync.ts';
-export { InputLead, InputSender, type InputLeadOptions, type InputSenderOptions } from './input-sender.ts';
+export { AckCarrier, InputLead, InputSender, type InputLeadOptions, type InputSenderOptions } from './input-sender.ts';
 export { InterpolationBuffer, slerpInto, type InterpolatedFrame, type InterpolationMode, type InterpolationOptions, type InterpolationStats, type PushOutcome } from './interpolation.ts';
 export type { LinkClosedInfo, SnapshotInfo } from './link-session.ts';
 export { MemoryNetwork, type MemoryNetworkOptions, type MemoryPeer, type MemoryTransport } from './memory-transport.ts';

@@ -1,6 +1,7 @@
 // Input sending: InputSender fixes one command per tick as the target tick advances and builds input messages that
-// repeat the last few commands (redundancy); InputLead picks how many ticks ahead of the server to aim, from RTT
-// jitter plus a boost whenever the server reports ticks where our input arrived too late.
+// repeat the last few commands (redundancy); AckCarrier puts snapshot acks on those messages; InputLead picks how many
+// ticks ahead of the server to aim, from RTT jitter plus a boost whenever the server reports ticks where our input
+// arrived too late.
 import type { InputMessage } from '../shared/protocol/client-messages.ts';
 import { DEFAULT_INPUT_REDUNDANCY, MAX_INPUT_COMMANDS_PER_MESSAGE } from '../shared/protocol/limits.ts';
 import { NEUTRAL_INPUT, validateInputCommand, type InputCommand } from '../shared/sim/input.ts';
@@ -86,6 +87,40 @@ export class InputSender {
     this.byTick.clear();
     this.firstTick = -1;
     this.lastTick = -1;
+  }
+}
+
+/** Input pumps an ack may wait for an input message to ride on before it goes out alone (two pumps: one tick). */
+export const ACK_WAIT_PUMPS = 2;
+
+/**
+ * The snapshot ack that rides on the next input message (protocol 7), so a playing client sends one message per tick,
+ * not one per tick plus one per snapshot. Only the newest decoded tick is acked: the server's delta baseline is the
+ * newest acked snapshot, and an older ack adds nothing to it. An ack that finds no input message for ACK_WAIT_PUMPS
+ * pumps (a client that sends no input, or a stalled target) goes out alone as an `ack` message.
+ */
+export class AckCarrier {
+  private pending: number | null = null;
+  private waitedPumps = 0;
+
+  /** The snapshot of `tick` was decoded and kept. */
+  decoded(tick: number): void {
+    if (this.pending === null || tick > this.pending) this.pending = tick;
+  }
+
+  /** The tick to carry on the input message going out now (then forgotten), or undefined when there is none. */
+  carry(): number | undefined {
+    const tick = this.pending;
+    this.pending = null;
+    this.waitedPumps = 0;
+    return tick ?? undefined;
+  }
+
+  /** A pump sent no input message: the tick to ack alone now (then forgotten), or null while it may still wait. */
+  alone(): number | null {
+    if (this.pending === null) return null;
+    if (++this.waitedPumps < ACK_WAIT_PUMPS) return null;
+    return this.carry() ?? null;
   }
 }
 

@@ -14,7 +14,7 @@ import { SnapshotDecoder } from '../shared/protocol/snapshot-stream.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
 import type { BodyDescriptor, SimEvent } from '../shared/sim/types.ts';
 import { ClockSync } from './clock-sync.ts';
-import { InputLead, InputSender, type InputLeadOptions } from './input-sender.ts';
+import { AckCarrier, InputLead, InputSender, type InputLeadOptions } from './input-sender.ts';
 import { InterpolationBuffer, type InterpolatedFrame, type InterpolationOptions } from './interpolation.ts';
 import { PredictSession, type PredictedFrame, type PredictOptions } from './prediction/predict-session.ts';
 import type { Transport, TransportFactory } from './transport.ts';
@@ -94,6 +94,8 @@ export interface LinkCounters {
   snapshots: number;
   snapshotsFailed: number;
   inputMessages: number;
+  /** Snapshot acks that went out alone (most ride on input messages). */
+  ackMessages: number;
   pings: number;
   pongs: number;
 }
@@ -112,6 +114,7 @@ export class LinkSession {
   private interp: InterpolationBuffer | null = null;
   private sync: ClockSync | null = null;
   private readonly sender: InputSender;
+  private readonly acks = new AckCarrier();
   private lead: InputLead | null = null;
   private missedInputTicks: number | null = null;
   private roomPace: { ticksPerSecond: number; slow: boolean } | null = null;
@@ -123,7 +126,7 @@ export class LinkSession {
   private pingsSent = 0;
   private newestFrame: QuantizedFrame | null = null;
   private predictSession: PredictSession | null = null;
-  readonly counters: LinkCounters = { bytesIn: 0, bytesOut: 0, messagesIn: 0, snapshots: 0, snapshotsFailed: 0, inputMessages: 0, pings: 0, pongs: 0 };
+  readonly counters: LinkCounters = { bytesIn: 0, bytesOut: 0, messagesIn: 0, snapshots: 0, snapshotsFailed: 0, inputMessages: 0, ackMessages: 0, pings: 0, pongs: 0 };
   /** Recent (time, bytes) of received messages, for kbps. */
   private readonly inLog: Array<[number, number]> = [];
 
@@ -388,15 +391,21 @@ export class LinkSession {
     // tick count (at arrival) passes T: T is then the next tick the server runs, at least half a tick away. The lead
     // (jitter margin + boost) only moves the target further when it needs more than that half tick.
     const target = Math.floor(sync.serverTickAt(now + oneWayMs) + Math.max(0, lead.leadTicks - PUMP_SPACING_TICKS));
-    if (target >= 0) {
-      const msg = this.sender.update(target);
-      if (msg !== null) {
-        this.counters.inputMessages++;
-        this.send(msg);
+    const msg = target >= 0 ? this.sender.update(target) : null;
+    if (msg !== null) {
+      const ackTick = this.acks.carry();
+      if (ackTick !== undefined) msg.ackTick = ackTick;
+      this.counters.inputMessages++;
+      this.send(msg);
+    } else {
+      const ackTick = this.acks.alone();
+      if (ackTick !== null) {
+        this.counters.ackMessages++;
+        this.send({ type: 'ack', tick: ackTick });
       }
-      // The local simulation runs to the newest tick the sender fixed: the own command of that tick is in it.
-      this.predictSession?.advance(this.sender.newestTick + 1, (t) => this.sender.commandFor(t));
     }
+    // The local simulation runs to the newest tick the sender fixed: the own command of that tick is in it.
+    if (target >= 0) this.predictSession?.advance(this.sender.newestTick + 1, (t) => this.sender.commandFor(t));
   }
 
   private onSnapshot(bytes: Uint8Array, descriptors: BodyDescriptor[], sizeBytes: number, now: number): void {
@@ -414,7 +423,7 @@ export class LinkSession {
     }
     const frame = decoded.frame;
     this.counters.snapshots++;
-    this.send({ type: 'ack', tick: frame.tick });
+    this.acks.decoded(frame.tick); // rides on the next input message (or goes alone within a tick)
     if (this.newestFrame === null || frame.tick > this.newestFrame.tick) this.newestFrame = frame;
     const view = dequantizeFrame(this.format, frame);
     this.interp.push(view, now);

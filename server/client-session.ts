@@ -1,97 +1,19 @@
 // One client connection from hello to bye: validates every incoming frame, enforces per-client rate and error limits,
-// enters a room (or resumes a held player) wherever it runs, feeds inputs/acks/pings to its seat, and is the
+// enters a room (or resumes a held player) wherever it runs, hands a joined player's messages to its PlayerInbox, and is the
 // MemberSink the room's bytes for this client arrive at. Nothing a client sends reaches the room unvalidated or under
 // another player's id.
-import type { Clock, TimerHandle } from '../shared/clock.ts';
-import {
-  ByeReason,
-  decodeClientMessage,
-  encodeServerMessage,
-  ErrorCode,
-  MAX_CLIENT_MESSAGE_BYTES,
-  type ClientMessage,
-  type HelloMessage,
-  type ServerMessage,
-  NetMode,
-} from '../shared/protocol/index.ts';
-import { admitSeat, type SessionAccess } from './access/admission.ts';
+import type { TimerHandle } from '../shared/clock.ts';
+import { ByeReason, decodeClientMessage, encodeServerMessage, ErrorCode, type ClientMessage, type HelloMessage, type ServerMessage } from '../shared/protocol/index.ts';
+import { admitSeat } from './access/admission.ts';
 import type { ResumeHolder } from './access/resume-tokens.ts';
 import { CloseCode, type ServerConnection } from './connection.ts';
-import { checkGameMessage } from '../shared/sim/game-messages.ts';
-import { fitInputMessage } from './game-input-gate.ts';
 import { DeliveryKind, type HostedRoom, type MemberSink, type RoomEntry, type Seat } from './hosted-room.ts';
-import { OfferResult } from './input-buffer.ts';
-import type { Logger } from './logger.ts';
-import type { ServerMetrics } from './metrics.ts';
-import { RateLimiter, type RateLimit } from './rate-limiter.ts';
+import { PlayerInbox, pongFor, type InboxVerdict } from './player-inbox.ts';
+import { RateLimiter } from './rate-limiter.ts';
 import { RoomMovedError } from './fleet/room-moved.ts';
 import { RoomError } from './room.ts';
-import type { RoomManager } from './room-manager.ts';
 import { LinkStats, snapshotTick } from './monitor/link-stats.ts';
-
-/** Per-client limits. */
-export interface SessionLimits {
-  /** All messages: sustained rate and burst. Beyond it the client is disconnected (flood). */
-  messages: RateLimit;
-  /** Input messages alone. */
-  inputs: RateLimit;
-  /** Refused messages: a few are answered with errors; past this bucket the client is disconnected. */
-  badMessages: RateLimit;
-  /** Largest accepted frame (bytes). */
-  maxMessageBytes: number;
-  /** Time allowed between connecting and a valid hello. */
-  helloTimeoutMs: number;
-  /** Skip snapshots while this many bytes are queued on the socket. */
-  snapshotSkipBufferedBytes: number;
-  /** Disconnect when this many bytes are queued (reliable messages cannot be dropped, nor queued without bound). */
-  maxBufferedBytes: number;
-  /** Predict mode: checkpoints a client may ask for (netMode predict, resync); more are refused with rate-limited. */
-  resyncs?: RateLimit;
-}
-
-/**
- * Defaults: room for 60 inputs + 60 acks + pings per second with slack, and a short leash on garbage. The bursts
- * hold ~10 s of a well-behaved client's traffic: after a network stall (or a server pause) its on-time messages
- * arrive all at once, and that must not read as a flood; the sustained rates still cap a flooder.
- */
-export const DEFAULT_SESSION_LIMITS: Readonly<SessionLimits> = Object.freeze({
-  messages: { perSecond: 300, burst: 1200 },
-  inputs: { perSecond: 150, burst: 600 },
-  badMessages: { perSecond: 0.5, burst: 10 },
-  maxMessageBytes: MAX_CLIENT_MESSAGE_BYTES,
-  helloTimeoutMs: 5_000,
-  snapshotSkipBufferedBytes: 256 * 1024,
-  maxBufferedBytes: 8 * 1024 * 1024,
-});
-
-/** Default limit on checkpoints a client asks for: one a second. */
-export const DEFAULT_RESYNC_LIMIT: Readonly<RateLimit> = Object.freeze({ perSecond: 1, burst: 1 });
-
-/** What a session needs from the server. */
-export interface SessionContext {
-  clock: Clock;
-  metrics: ServerMetrics;
-  logger: Logger;
-  rooms: RoomManager;
-  limits: SessionLimits;
-  /** Seat and resume rules. */
-  access: SessionAccess;
-  /** Called once when the session ends. */
-  onEnd(session: ClientSession): void;
-}
-
-/** Counters of one session (tests and logs). */
-export interface SessionStats {
-  messagesReceived: number;
-  badMessages: number;
-  errorsSent: number;
-  snapshotsSent: number;
-  snapshotsSkipped: number;
-  snapshotBytes: number;
-  bytesSent: number;
-  inputsLate: number;
-  inputsTooFar: number;
-}
+import type { SessionContext, SessionStats } from './session-context.ts';
 
 let nextSessionId = 1;
 
@@ -107,16 +29,13 @@ export class ClientSession implements MemberSink, ResumeHolder {
   readonly link = new LinkStats();
   private readonly ctx: SessionContext;
   private readonly messageLimiter: RateLimiter;
-  private readonly inputLimiter: RateLimiter;
   private readonly badLimiter: RateLimiter;
-  private readonly resyncLimiter: RateLimiter;
-  /** How this client is served: snapshots until a predicting client asks for predict mode. */
-  private delivery: NetMode = NetMode.Snapshot;
   private state: 'hello' | 'joining' | 'joined' | 'closed' = 'hello';
   private helloTimer: TimerHandle | null;
   private room: HostedRoom | null = null;
   private playerId = 0;
-  private seat: Seat | null = null;
+  /** The joined player's seat and what its messages do to it (null before the welcome). */
+  private inbox: PlayerInbox | null = null;
   /** The seat this session's hello used, until the join it was for succeeds (given back if it fails). */
   private seatId: string | null = null;
 
@@ -124,9 +43,7 @@ export class ClientSession implements MemberSink, ResumeHolder {
     this.conn = conn;
     this.ctx = ctx;
     this.messageLimiter = new RateLimiter(ctx.clock, ctx.limits.messages);
-    this.inputLimiter = new RateLimiter(ctx.clock, ctx.limits.inputs);
     this.badLimiter = new RateLimiter(ctx.clock, ctx.limits.badMessages);
-    this.resyncLimiter = new RateLimiter(ctx.clock, ctx.limits.resyncs ?? DEFAULT_RESYNC_LIMIT);
     this.helloTimer = ctx.clock.setTimer(ctx.limits.helloTimeoutMs, () => {
       this.helloTimer = null;
       if (this.state === 'hello') this.end(ByeReason.Timeout, `no hello within ${ctx.limits.helloTimeoutMs} ms`, CloseCode.PolicyViolation);
@@ -146,7 +63,7 @@ export class ClientSession implements MemberSink, ResumeHolder {
 
   /** Ticks the room simulated with this player's previous input repeated (none had arrived); 0 before joining. */
   missedInputTicks(): number {
-    return this.seat ? this.seat.missedInputTicks() : 0;
+    return this.inbox ? this.inbox.seat.missedInputTicks() : 0;
   }
 
   /** The room once joined. */
@@ -217,104 +134,40 @@ export class ClientSession implements MemberSink, ResumeHolder {
       case 'hello':
         this.onHello(msg);
         return;
-      case 'input': {
-        if (this.state !== 'joined' || !this.seat) {
-          this.refuse(ErrorCode.UnexpectedMessage, 'input before the welcome');
-          return;
-        }
-        if (!this.inputLimiter.take()) {
-          this.end(ByeReason.Flood, `more than ${this.ctx.limits.inputs.perSecond} input messages per second`, CloseCode.PolicyViolation);
-          return;
-        }
-        const fit = fitInputMessage(msg, this.seat.welcome.scenario.game?.input ?? []);
-        if (!fit.ok) {
-          this.refuse(ErrorCode.BadInput, fit.error);
-          return;
-        }
-        if (fit.clamped > 0) this.ctx.metrics.inputsClamped.inc(fit.clamped);
-        if (fit.commands.length > 0) this.link.inputArrived(msg.firstTick + fit.commands.length - 1, this.seat.serverTick());
-        for (let i = 0; i < fit.commands.length; i++) {
-          const r = this.seat.offerInput(msg.firstTick + i, fit.commands[i]);
-          if (r === OfferResult.Late) this.stats.inputsLate++;
-          else if (r === OfferResult.TooFar) this.stats.inputsTooFar++;
-        }
+      case 'input':
+        this.apply('input before the welcome', (inbox) => inbox.input(msg));
         return;
-      }
       case 'ack':
-        if (this.state !== 'joined' || !this.seat) {
-          this.refuse(ErrorCode.UnexpectedMessage, 'ack before the welcome');
-          return;
-        }
-        this.seat.acknowledge(msg.tick);
-        this.link.acked(msg.tick, this.ctx.clock.nowMs());
+        this.apply('ack before the welcome', (inbox) => inbox.ack(msg.tick));
         return;
-      case 'ping': {
-        const seat = this.room ? this.seat : null;
-        const pace = seat ? seat.pace() : null;
-        this.send({
-          type: 'pong',
-          clientTimeMs: msg.clientTimeMs,
-          serverTick: seat ? seat.serverTick() : 0,
-          serverTimeMs: this.ctx.clock.nowMs(),
-          missedInputTicks: seat ? seat.missedInputTicks() : 0,
-          roomTicksPerSecond: pace ? Math.round(pace.ticksPerSecond) : 0,
-          roomSlow: pace ? pace.slow : false,
-        });
+      case 'ping':
+        this.send(pongFor(this.room ? (this.inbox?.seat ?? null) : null, this.ctx.clock, msg.clientTimeMs));
         return;
-      }
       case 'bye':
         this.end(ByeReason.ClientBye, 'goodbye', CloseCode.Normal);
         return;
       case 'resync':
-        if (this.state !== 'joined' || !this.seat || this.delivery !== NetMode.Predict) {
-          this.refuse(ErrorCode.UnexpectedMessage, 'resync is for clients served in predict mode');
-          return;
-        }
-        this.askPredict('resync asked for again too soon: at most one checkpoint per second');
+        this.apply('resync is for clients served in predict mode', (inbox) => inbox.resync());
         return;
       case 'netMode':
-        this.onNetMode(msg.mode);
+        this.apply('netMode before the welcome', (inbox) => inbox.netMode(msg.mode));
         return;
-      case 'game': {
-        if (this.state !== 'joined' || !this.seat) {
-          this.refuse(ErrorCode.UnexpectedMessage, 'game message before the welcome');
-          return;
-        }
-        const refused = checkGameMessage(msg.name, msg.payload, this.seat.welcome.scenario.game?.messages ?? []) ?? this.seat.offerMessage(msg.name, msg.payload);
-        if (refused !== null) this.refuse(ErrorCode.BadMessage, `game: ${refused}`);
+      case 'game':
+        this.apply('game message before the welcome', (inbox) => inbox.game(msg));
         return;
-      }
     }
   }
 
-  /** A predicting client asks for predict mode (or falls back to snapshots); only a predict-mode room predicts. */
-  private onNetMode(mode: NetMode): void {
-    const seat = this.seat;
-    if (this.state !== 'joined' || !seat) {
-      this.refuse(ErrorCode.UnexpectedMessage, 'netMode before the welcome');
+  /** Hands a message to the joined player's inbox and does what it says; before the welcome the message is refused. */
+  private apply(early: string, take: (inbox: PlayerInbox) => InboxVerdict | void): void {
+    if (this.state !== 'joined' || !this.inbox) {
+      this.refuse(ErrorCode.UnexpectedMessage, early);
       return;
     }
-    if (mode === this.delivery) return;
-    if (mode === NetMode.Snapshot) {
-      this.delivery = mode;
-      seat.setNetMode(mode);
-      return;
-    }
-    if (seat.welcome.netMode !== NetMode.Predict) {
-      this.refuse(ErrorCode.UnexpectedMessage, `room ${seat.welcome.roomId} serves snapshots only`);
-      return;
-    }
-    this.askPredict('net mode switched back to predict too soon: at most one checkpoint per second');
-  }
-
-  /** Predict mode from the next tick, starting with a checkpoint: at most one a second. */
-  private askPredict(tooSoon: string): void {
-    if (!this.resyncLimiter.take()) {
-      this.refuse(ErrorCode.RateLimited, tooSoon);
-      return;
-    }
-    this.delivery = NetMode.Predict;
-    this.seat!.setNetMode(NetMode.Predict);
+    const verdict = take(this.inbox);
+    if (!verdict) return;
+    if ('flood' in verdict) this.end(ByeReason.Flood, verdict.flood, CloseCode.PolicyViolation);
+    else this.refuse(verdict.refuse, verdict.message);
   }
 
   private onHello(hello: HelloMessage): void {
@@ -384,7 +237,7 @@ export class ClientSession implements MemberSink, ResumeHolder {
     const resumed = 'resumePlayerId' in entry;
     this.room = room;
     this.playerId = seat.playerId;
-    this.seat = seat;
+    this.inbox = new PlayerInbox(seat, { clock: this.ctx.clock, metrics: this.ctx.metrics, limits: this.ctx.limits, stats: this.stats, link: this.link });
     this.state = 'joined';
     const resume = this.ctx.access.resume;
     const token = resume ? resume.issue(room, seat.playerId, this) : null;

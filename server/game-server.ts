@@ -8,7 +8,8 @@ import { DEFAULT_RESUME_GRACE_MS, ResumeTokens } from './access/resume-tokens.ts
 import type { SeatTokens } from './access/seat-tokens.ts';
 import { CatchUpBudget } from './catch-up-budget.ts';
 import { SystemClock } from './clock.ts';
-import { ClientSession, DEFAULT_SESSION_LIMITS, type SessionLimits } from './client-session.ts';
+import { ClientSession } from './client-session.ts';
+import { DEFAULT_SESSION_LIMITS, type SessionLimits } from './session-context.ts';
 import { CloseCode, type ServerConnection } from './connection.ts';
 import { createLogger, type Logger } from './logger.ts';
 import { createMetrics, renderMergedMetrics, type ServerMetrics } from './metrics.ts';

@@ -12,7 +12,7 @@ import { MAX_CLIENT_MESSAGE_BYTES } from '../shared/protocol/index.ts';
 import { resolveParams } from '../shared/sim/scenario.ts';
 import { createServerAccess, logAccess, type AccessOptions } from './access/access-setup.ts';
 import { SystemClock } from './clock.ts';
-import type { SessionLimits } from './client-session.ts';
+import type { SessionLimits } from './session-context.ts';
 import { GameServer } from './game-server.ts';
 import type { AgonesLifecycle } from './fleet/agones-lifecycle.ts';
 import type { FleetDirectory } from './fleet/fleet-directory.ts';

@@ -1,6 +1,7 @@
 // WebSocket side of the shared HTTP(S) port: admits upgrades through the connection policy (per-address caps, back-off
-// after kicks), upgrades with `ws` (maxPayload enforced, no compression), wraps each socket as a ServerConnection,
-// keeps links alive with pings, and makes sure a socket the server closes is gone shortly after (never read for long).
+// after kicks), upgrades with `ws` (maxPayload enforced, no compression), wraps each socket as a ServerConnection
+// whose sends within one turn of the event loop leave in one write (a room's tick: events + snapshot, one syscall per
+// socket), keeps links alive with pings, and makes sure a socket the server closes is gone shortly after.
 import type { IncomingMessage, Server as HttpServer } from 'node:http';
 import type { Server as HttpsServer } from 'node:https';
 import type { Duplex } from 'node:stream';
@@ -60,6 +61,9 @@ function toBytes(data: RawData): Uint8Array {
 class WsConnection implements ServerConnection {
   readonly remote: string;
   private readonly socket: WebSocket;
+  /** The TCP (or TLS) socket under `socket`: corked while this turn's messages gather. */
+  private readonly raw: Duplex;
+  private corked = false;
   private readonly ticket: ConnectionTicket;
   private readonly clock: Clock;
   private readonly closeGraceMs: number;
@@ -71,8 +75,9 @@ class WsConnection implements ServerConnection {
   private killTimer: TimerHandle | null = null;
   alive = true;
 
-  constructor(socket: WebSocket, remote: string, ticket: ConnectionTicket, clock: Clock, closeGraceMs: number) {
+  constructor(socket: WebSocket, raw: Duplex, remote: string, ticket: ConnectionTicket, clock: Clock, closeGraceMs: number) {
     this.socket = socket;
+    this.raw = raw;
     this.remote = remote;
     this.ticket = ticket;
     this.clock = clock;
@@ -121,10 +126,25 @@ class WsConnection implements ServerConnection {
     });
   }
 
+  /**
+   * Queues one message. The first send of a turn corks the socket and a microtask uncorks it, so everything sent to
+   * this client in one synchronous run (a room tick's events and snapshot, a worker batch) goes out in one writev;
+   * nothing waits past the current turn.
+   */
   send(data: Uint8Array): void {
     if (this.socket.readyState !== this.socket.OPEN) return;
+    if (!this.corked) {
+      this.corked = true;
+      this.raw.cork();
+      queueMicrotask(this.uncork);
+    }
     this.socket.send(data, { binary: true });
   }
+
+  private readonly uncork = (): void => {
+    this.corked = false;
+    this.raw.uncork();
+  };
 
   bufferedAmount(): number {
     return this.socket.bufferedAmount;
@@ -210,7 +230,7 @@ export function attachWsGateway(http: HttpServer | HttpsServer, opts: WsGatewayO
     const ticket = policy.open(key);
     socket.once('close', () => ticket.closed());
     wss.handleUpgrade(req, socket, head, (ws) => {
-      const conn = new WsConnection(ws, describeAddress(client), ticket, opts.clock, closeGraceMs);
+      const conn = new WsConnection(ws, socket, describeAddress(client), ticket, opts.clock, closeGraceMs);
       open.add(conn);
       ws.on('close', () => open.delete(conn));
       opts.onConnection(conn, req);

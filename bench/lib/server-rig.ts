@@ -1,6 +1,6 @@
 // An in-process server for the tick-overhead figure: the real GameServer, room, client sessions, snapshot encoders and
 // input-log writer, driven tick by tick. Clients sit behind tick-scheduled links and send what the real client sends
-// (input messages from its InputSender with redundancy, acks, pings); the server's part of a tick (handling the
+// (input messages from its InputSender with redundancy carrying snapshot acks, pings); the server's part of a tick (handling the
 // arrived messages + Room.tickOnce) is what `serverTick()` runs, and the clients' part (`clientTick()`) runs outside it.
 import '../../server/physics-node.ts';
 import { mkdtemp, rm } from 'node:fs/promises';
@@ -21,7 +21,7 @@ import { CharacterController } from '../../shared/physics/index.ts';
 import { decodeServerMessage, DEFAULT_INPUT_REDUNDANCY, encodeClientMessage, PROTOCOL_VERSION, readSnapshotHeader } from '../../shared/protocol/index.ts';
 import { BotScript } from '../../shared/sim/bots.ts';
 import { Simulation } from '../../shared/sim/simulation.ts';
-import { InputSender } from './client-lib.ts';
+import { AckCarrier, InputSender } from './client-lib.ts';
 import { wsFrameBytes } from './wire.ts';
 import { TICK_MS, TICK_RATE_HZ } from '../../shared/tick-rate.ts';
 
@@ -87,6 +87,10 @@ interface RigClient {
   playerId: number;
   /** The client library's own input sender: one message per tick carrying the newest commands (redundancy 4). */
   sender: InputSender;
+  /** Acks of snapshots the client has decoded, for its next input message (the library's AckCarrier). */
+  acks: AckCarrier;
+  /** Snapshot ticks by the client tick they reach the client at (one way after they were sent). */
+  arriving: Map<number, number[]>;
   nextPingMs: number;
   /** Client→server messages by the tick they arrive at. */
   inbound: Map<number, Uint8Array[]>;
@@ -276,6 +280,8 @@ export async function startServerRig(opts: ServerRigOptions): Promise<ServerRig>
       session,
       playerId: session.player,
       sender: new InputSender({ redundancy: DEFAULT_INPUT_REDUNDANCY }),
+      acks: new AckCarrier(),
+      arriving: new Map(),
       // Steady pings spread over the second, as clients that joined at different times would be.
       nextPingMs: clock.nowMs() + (i * PING_INTERVAL_MS) / opts.clients,
       inbound: new Map(),
@@ -322,16 +328,28 @@ export async function startServerRig(opts: ServerRigOptions): Promise<ServerRig>
           if (!m.ok) throw new Error(`server rig: undecodable server message: ${m.error}`);
           if (m.message.type === 'snapshot') {
             c.snapshots++;
-            // The snapshot reaches the client after one way; its ack is back after the other.
-            const tick = readSnapshotHeader(m.message.bytes).tick;
-            queue(c, now - 1 + 2 * opts.oneWayTicks, encodeClientMessage({ type: 'ack', tick }));
+            // The snapshot reaches the client after one way; its ack rides on the first input message sent after that.
+            const at = now - 1 + opts.oneWayTicks;
+            const list = c.arriving.get(at);
+            if (list) list.push(readSnapshotHeader(m.message.bytes).tick);
+            else c.arriving.set(at, [readSnapshotHeader(m.message.bytes).tick]);
           } else if (m.message.type === 'bye') throw new Error(`server rig: client ${c.playerId} was sent away: ${m.message.message}`);
         }
+        for (const [at, ticks] of c.arriving) {
+          if (at > now) continue;
+          for (const tick of ticks) c.acks.decoded(tick);
+          c.arriving.delete(at);
+        }
         const input = byPlayer.get(c.playerId);
-        if (input) {
-          c.sender.setCommand(input);
-          const message = c.sender.update(now + lead);
-          if (message) queue(c, now + opts.oneWayTicks, encodeClientMessage(message));
+        if (input) c.sender.setCommand(input);
+        const message = input ? c.sender.update(now + lead) : null;
+        if (message) {
+          const ackTick = c.acks.carry();
+          if (ackTick !== undefined) message.ackTick = ackTick;
+          queue(c, now + opts.oneWayTicks, encodeClientMessage(message));
+        } else {
+          const ackTick = c.acks.alone();
+          if (ackTick !== null) queue(c, now + opts.oneWayTicks, encodeClientMessage({ type: 'ack', tick: ackTick }));
         }
         if (nowMs >= c.nextPingMs) {
           queue(c, now + opts.oneWayTicks, encodeClientMessage({ type: 'ping', clientTimeMs: nowMs }));

@@ -1,14 +1,14 @@
 // A light bot swarm: N players that send the server exactly what the client library sends — hello, pings (5 quick,
 // then one a second) feeding the library's ClockSync, input messages from its InputSender (newest command plus 3
-// repeats) aimed by its InputLead on the library's half-tick pump, an ack per snapshot — but only read each
-// snapshot's header instead of decoding it, so one core of bots can load a server core. Prints {"ready"}, {"window"}
+// repeats) aimed by its InputLead on the library's half-tick pump, snapshot acks on them (its AckCarrier) — but only
+// read each snapshot's header instead of decoding it, so one core of bots can load a server core. Prints {"ready"}, {"window"}
 // after SETTLE_MS, {"report"} after WINDOW_MS, and plays on until stopped.
 // Run: node bench/procs/light-swarm.ts WS_URL CLIENTS SETTLE_MS WINDOW_MS [ROOMS]
 // (ROOMS 0: everyone in the default room; R > 0: client i joins room r((i mod R) + 1)).
 import WebSocket from 'ws';
 import { decodeServerMessage, DEFAULT_INPUT_REDUNDANCY, encodeClientMessage, PROTOCOL_VERSION, readSnapshotHeader, type ClientMessage } from '../../shared/protocol/index.ts';
 import { BotScript } from '../../shared/sim/bots.ts';
-import { ClockSync, InputLead, InputSender } from '../lib/client-lib.ts';
+import { AckCarrier, ClockSync, InputLead, InputSender } from '../lib/client-lib.ts';
 import { TICK_MS } from '../../shared/tick-rate.ts';
 
 const [url, nArg, settleArg, windowArg, roomsArg] = process.argv.slice(2);
@@ -32,6 +32,8 @@ interface LightBot {
   sync: ClockSync | null;
   lead: InputLead | null;
   sender: InputSender;
+  /** Snapshot acks: on the next input message, alone only after a tick without one (protocol 7). */
+  acks: AckCarrier;
   missedInputTicks: number | null;
   pingsSent: number;
   nextPingMs: number;
@@ -68,8 +70,7 @@ function onMessage(b: LightBot, data: Buffer): void {
   const m = r.message;
   if (m.type === 'snapshot') {
     received.snapshots++;
-    send(b, { type: 'ack', tick: readSnapshotHeader(m.bytes).tick });
-    sent.ack++;
+    b.acks.decoded(readSnapshotHeader(m.bytes).tick);
   } else if (m.type === 'pong' && b.sync) {
     b.sync.addSample({ sentLocalMs: m.clientTimeMs, receivedLocalMs: now, serverTick: m.serverTick, serverTimeMs: m.serverTimeMs });
     b.missedInputTicks = m.missedInputTicks;
@@ -83,7 +84,7 @@ function onMessage(b: LightBot, data: Buffer): void {
 
 function connectBot(i: number): Promise<LightBot> {
   const ws = new WebSocket(url, { perMessageDeflate: false });
-  const bot: LightBot = { ws, sync: null, lead: null, sender: new InputSender({ redundancy: DEFAULT_INPUT_REDUNDANCY }), missedInputTicks: null, pingsSent: 0, nextPingMs: 0, closed: false };
+  const bot: LightBot = { ws, sync: null, lead: null, sender: new InputSender({ redundancy: DEFAULT_INPUT_REDUNDANCY }), acks: new AckCarrier(), missedInputTicks: null, pingsSent: 0, nextPingMs: 0, closed: false };
   return new Promise((resolve, reject) => {
     ws.on('open', () => send(bot, { type: 'hello', version: PROTOCOL_VERSION, name: `light-${i + 1}`, room: rooms > 0 ? `r${(i % rooms) + 1}` : null }));
     ws.on('message', (data: Buffer) => {
@@ -107,11 +108,17 @@ function pump(bots: readonly LightBot[]): void {
     b.lead.update(b.sync.jitterMs, b.missedInputTicks, now);
     const oneWayMs = (b.sync.rttMs ?? 0) / 2;
     const target = Math.floor(b.sync.serverTickAt(now + oneWayMs) + Math.max(0, b.lead.leadTicks - PUMP_SPACING_TICKS));
-    if (target < 0) continue;
-    const msg = b.sender.update(target);
+    const msg = target < 0 ? null : b.sender.update(target);
     if (msg !== null) {
+      const ackTick = b.acks.carry();
+      if (ackTick !== undefined) msg.ackTick = ackTick;
       send(b, msg);
       sent.input++;
+    } else {
+      const ackTick = b.acks.alone();
+      if (ackTick === null) continue;
+      send(b, { type: 'ack', tick: ackTick });
+      sent.ack++;
     }
   }
 }

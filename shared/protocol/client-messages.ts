@@ -26,6 +26,11 @@ export interface InputMessage {
   firstTick: number;
   /** 1..MAX_INPUT_COMMANDS_PER_MESSAGE commands, each passed through validateInputCommand. */
   commands: InputCommand[];
+  /**
+   * A snapshot ack riding along (protocol 7): the client decoded the snapshot of this tick, exactly as an `ack`
+   * message says; absent when there is nothing new to ack.
+   */
+  ackTick?: number;
 }
 
 /** The client decoded the snapshot of this tick: the server may use it as a delta baseline. */

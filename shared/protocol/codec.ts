@@ -84,8 +84,10 @@ export function encodeClientMessage(m: ClientMessage): Uint8Array {
       const base = [ClientOpcode.Hello, m.version, m.name, m.room];
       return packr.pack(m.seatToken !== undefined || m.resumeToken !== undefined ? [...base, options] : base);
     }
-    case 'input':
-      return packr.pack([ClientOpcode.Input, m.firstTick, m.commands.map((c) => (c.game !== undefined && c.game.length > 0 ? [c.moveX, c.moveZ, c.yaw, c.pitch, c.buttons, [...c.game]] : [c.moveX, c.moveZ, c.yaw, c.pitch, c.buttons]))]);
+    case 'input': {
+      const commands = m.commands.map((c) => (c.game !== undefined && c.game.length > 0 ? [c.moveX, c.moveZ, c.yaw, c.pitch, c.buttons, [...c.game]] : [c.moveX, c.moveZ, c.yaw, c.pitch, c.buttons]));
+      return packr.pack(m.ackTick === undefined ? [ClientOpcode.Input, m.firstTick, commands] : [ClientOpcode.Input, m.firstTick, commands, m.ackTick]);
+    }
     case 'ack':
       return packr.pack([ClientOpcode.SnapshotAck, m.tick]);
     case 'ping':

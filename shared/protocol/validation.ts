@@ -4,7 +4,7 @@
 import { describeValue } from '../sim/describe-value.ts';
 import { checkGameMessageShape } from '../sim/game-messages.ts';
 import { validateInputCommand, type InputCommand } from '../sim/input.ts';
-import type { ClientMessage, HelloMessage } from './client-messages.ts';
+import type { ClientMessage, HelloMessage, InputMessage } from './client-messages.ts';
 import { decodeFrame, toBytes } from './codec.ts';
 import {
   MAX_CLIENT_FRAME_DEPTH,
@@ -101,10 +101,11 @@ function arity(fields: unknown[], n: number, name: string): Failure | null {
   return fields.length === n ? null : bad(`${name} must have ${n - 1} field(s), got ${fields.length - 1}`);
 }
 
+/** input: [2, firstTick, commands] or [2, firstTick, commands, ackTick] (protocol 7: a snapshot ack riding along). */
 function decodeInput(fields: unknown[]): ClientDecodeResult {
-  const wrong = arity(fields, 3, 'input');
-  if (wrong) return wrong;
-  const [, firstTick, list] = fields;
+  if (fields.length !== 3 && fields.length !== 4) return bad(`input must have 2 or 3 fields, got ${fields.length - 1}`);
+  const [, firstTick, list, ackTick] = fields;
+  if (fields.length === 4 && !isTick(ackTick)) return bad(`input.ackTick must be an integer tick in [0, ${MAX_TICK}], got ${describeValue(ackTick)}`);
   if (!isTick(firstTick)) return bad(`input.firstTick must be an integer tick in [0, ${MAX_TICK}], got ${describeValue(firstTick)}`, ErrorCode.BadInput);
   if (!Array.isArray(list) || list.length === 0 || list.length > MAX_INPUT_COMMANDS_PER_MESSAGE) {
     return bad(`input.commands must be an array of 1..${MAX_INPUT_COMMANDS_PER_MESSAGE} commands`, ErrorCode.BadInput);
@@ -120,7 +121,9 @@ function decodeInput(fields: unknown[]): ClientDecodeResult {
     if (v.clamped) clamped++;
     commands.push(v.command);
   }
-  return { ok: true, message: { type: 'input', firstTick, commands }, clampedCommands: clamped };
+  const message: InputMessage = { type: 'input', firstTick, commands };
+  if (fields.length === 4) message.ackTick = ackTick as number;
+  return { ok: true, message, clampedCommands: clamped };
 }
 
 /** Decodes and checks one client frame; every failure is a result, never an exception. */

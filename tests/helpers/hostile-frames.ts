@@ -187,7 +187,8 @@ function edgeMessage(w: MsgpackWriter, rng: Prng, tick: number): void {
       else writeText(w, rng);
       return;
     case ClientOpcode.Input: {
-      const arity = rng.next() < 0.9 ? 3 : rng.int(0, 5);
+      // [2, firstTick, commands] or, since protocol 7, [2, firstTick, commands, ackTick]; sometimes any arity.
+      const arity = rng.next() < 0.9 ? rng.pick([3, 4]) : rng.int(0, 5);
       w.arrayHeader(arity).int(ClientOpcode.Input, 'fix');
       if (arity < 2) return;
       hostileTick(w, rng, tick);
@@ -199,7 +200,9 @@ function edgeMessage(w: MsgpackWriter, rng: Prng, tick: number): void {
         w.arrayHeader(fields);
         for (let f = 0; f < fields; f++) hostileCommandField(w, rng);
       }
-      for (let i = 3; i < arity; i++) writeHostile(w, rng, 1);
+      if (arity >= 4 && rng.next() < 0.7) hostileTick(w, rng, tick);
+      else if (arity >= 4) writeHostile(w, rng, 1);
+      for (let i = 4; i < arity; i++) writeHostile(w, rng, 1);
       return;
     }
     case ClientOpcode.SnapshotAck:
@@ -261,7 +264,7 @@ function dangerousKeys(w: MsgpackWriter, rng: Prng, tick: number): void {
 function mutated(rng: Prng, tick: number): Uint8Array {
   const valid = encodeClientMessage(
     rng.next() < 0.6
-      ? { type: 'input', firstTick: tick + 3, commands: [{ moveX: 1, moveZ: -127, yaw: 40000, pitch: -3, buttons: 5 }] }
+      ? { type: 'input', firstTick: tick + 3, commands: [{ moveX: 1, moveZ: -127, yaw: 40000, pitch: -3, buttons: 5 }], ...(rng.next() < 0.5 ? { ackTick: tick } : {}) }
       : rng.next() < 0.5
         ? { type: 'ack', tick }
         : { type: 'hello', version: PROTOCOL_VERSION, name: 'mutant', room: 'default' },

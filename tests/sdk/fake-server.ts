@@ -34,6 +34,8 @@ export interface FakeSession {
   missed: number;
   late: number;
   received: string[];
+  /** Snapshot ticks acked, in arrival order: by an ack message or riding on an input message (protocol 7). */
+  acked: number[];
   /** Commands applied per tick. */
   applied: Map<number, InputCommand>;
   /** Ticks whose command had arrived in time (the rest repeated the previous one). */
@@ -145,6 +147,7 @@ export class FakeServer {
       missed: 0,
       late: 0,
       received: [],
+      acked: [],
       applied: new Map(),
       onTime: new Set(),
       x: 0,
@@ -225,6 +228,10 @@ export class FakeServer {
         return;
       }
       case 'input':
+        if (m.ackTick !== undefined) {
+          s.encoder.acknowledge(m.ackTick);
+          s.acked.push(m.ackTick);
+        }
         m.commands.forEach((c, i) => {
           const t = m.firstTick + i;
           if (t < this.tick) {
@@ -237,6 +244,7 @@ export class FakeServer {
         return;
       case 'ack':
         s.encoder.acknowledge(m.tick);
+        s.acked.push(m.tick);
         return;
       case 'ping':
         this.send(s, { type: 'pong', clientTimeMs: m.clientTimeMs, serverTick: this.tick, serverTimeMs: this.clock.nowMs() + SERVER_CLOCK_OFFSET_MS, missedInputTicks: s.missed + this.extraMissed, roomTicksPerSecond: 60, roomSlow: false });

@@ -1,7 +1,8 @@
 // Tests of input sending: one fixed command per tick, messages that repeat the last few commands, forward-only ticks,
-// long jumps, and the adaptive lead (jitter, boosts on server-reported misses, decay).
+// long jumps, snapshot acks riding on input messages, and the adaptive lead (jitter, boosts on server-reported
+// misses, decay).
 import { describe, expect, it } from 'vitest';
-import { InputLead, InputSender } from '../../sdk/input-sender.ts';
+import { ACK_WAIT_PUMPS, AckCarrier, InputLead, InputSender } from '../../sdk/input-sender.ts';
 import { NEUTRAL_INPUT, type InputCommand } from '../../shared/sim/input.ts';
 
 const cmd = (moveX: number): InputCommand => ({ ...NEUTRAL_INPUT, moveX });
@@ -45,6 +46,31 @@ describe('input-sender', () => {
     expect(() => s.setCommand({ ...NEUTRAL_INPUT, moveX: Number.NaN })).toThrow(/setInput: moveX must be finite/);
     expect(() => new InputSender({ redundancy: 17 })).toThrow(/redundancy/);
     expect(() => s.update(-1)).toThrow(/targetTick/);
+  });
+
+  it('puts the newest decoded snapshot tick on the next input message, once', () => {
+    const acks = new AckCarrier();
+    expect(acks.carry()).toBeUndefined();
+    acks.decoded(30);
+    acks.decoded(32);
+    acks.decoded(31); // an older tick never replaces a newer one
+    expect(acks.carry()).toBe(32);
+    expect(acks.carry()).toBeUndefined();
+    expect(acks.alone()).toBeNull();
+  });
+
+  it('sends an ack alone only after it waited a tick of pumps without an input message', () => {
+    const acks = new AckCarrier();
+    acks.decoded(40);
+    for (let pump = 1; pump < ACK_WAIT_PUMPS; pump++) expect(acks.alone()).toBeNull();
+    expect(acks.alone()).toBe(40);
+    expect(acks.alone()).toBeNull();
+    // An input message in between takes the ack and starts the wait over.
+    acks.decoded(42);
+    expect(acks.alone()).toBeNull();
+    expect(acks.carry()).toBe(42);
+    acks.decoded(44);
+    expect(acks.alone()).toBeNull();
   });
 
   it('leads by the safety margin on a calm link and by twice the jitter more on a jittery one', () => {

@@ -2,7 +2,7 @@
 // clients over its MemoryNetwork that decode every server message and snapshot (acking them) exactly as a client would.
 import '../../server/physics-node.ts';
 import type { SeatTokens } from '../../server/access/seat-tokens.ts';
-import type { SessionLimits } from '../../server/client-session.ts';
+import type { SessionLimits } from '../../server/session-context.ts';
 import { GameServer } from '../../server/game-server.ts';
 import { silentLogger, type Logger } from '../../server/logger.ts';
 import { memoryPeerConnection } from '../../server/memory-peer.ts';

@@ -1,7 +1,8 @@
 // Integration tests for server/ws-gateway.ts on loopback: upgrades on the HTTP port, refusals before the upgrade
 // (full, per-address caps), messages that arrive before the owner attaches, oversize frames reported as 1009, dead
-// peers terminated and counted, and a kicked socket cut shortly after its close frame.
-import { createServer, type Server } from 'node:http';
+// peers terminated and counted, a kicked socket cut shortly after its close frame, and the messages of one turn
+// written to the socket at once.
+import { createServer, type IncomingMessage, type Server } from 'node:http';
 import type { AddressInfo } from 'node:net';
 import { afterEach, describe, expect, it } from 'vitest';
 import WebSocket from 'ws';
@@ -27,7 +28,7 @@ interface ListenOptions {
   closeGraceMs?: number;
   policy?: ConnectionPolicy;
   metrics?: ServerMetrics;
-  onConnection: (c: ServerConnection) => void;
+  onConnection: (c: ServerConnection, req: IncomingMessage) => void;
 }
 
 async function listen(opts: ListenOptions): Promise<string> {
@@ -70,6 +71,46 @@ describe('ws-gateway', () => {
     conn!.send(Uint8Array.of(9, 9));
     await waitFor(() => echoed.length === 1);
     expect(echoed).toEqual([[9, 9]]);
+    ws.close();
+  });
+
+  it('writes everything sent to a socket in one turn with one write, and the next turn with another', async () => {
+    let conn: ServerConnection | null = null;
+    const writes: number[] = [];
+    const url = await listen({
+      onConnection: (c, req) => {
+        conn = c;
+        // Count what reaches the TCP socket's own write paths (each is one write or writev system call).
+        const raw = req.socket as unknown as { _write: (...a: unknown[]) => void; _writev: (chunks: unknown[], cb: () => void) => void };
+        const write = raw._write.bind(raw);
+        const writev = raw._writev.bind(raw);
+        raw._write = (...a: unknown[]) => {
+          writes.push(1);
+          write(...a);
+        };
+        raw._writev = (chunks, cb) => {
+          writes.push(chunks.length);
+          writev(chunks, cb);
+        };
+      },
+    });
+    const ws = new WebSocket(url);
+    const got: number[][] = [];
+    ws.on('message', (d: Buffer) => got.push(Array.from(d)));
+    await new Promise((r) => ws.once('open', r));
+    await waitFor(() => conn !== null);
+    conn!.attach({ message: () => {}, close: () => {} });
+    // A room tick's events, snapshot and one more message for this client, all in one synchronous run.
+    conn!.send(Uint8Array.of(1));
+    conn!.send(Uint8Array.of(2, 2));
+    conn!.send(new Uint8Array(300).fill(3));
+    await new Promise((r) => setTimeout(r, 20));
+    conn!.send(Uint8Array.of(4));
+    await waitFor(() => got.length === 4);
+    expect(got.map((m) => m[0])).toEqual([1, 2, 3, 4]);
+    expect(got[2]).toHaveLength(300);
+    // Two writes: the three messages' six buffers (frame header + payload each) together, then the later one.
+    expect(writes).toEqual([6, 2]);
     ws.close();
   });
 

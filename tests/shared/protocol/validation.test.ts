@@ -100,6 +100,19 @@ describe('validation', () => {
     expect(errorOf(packValue([ClientOpcode.Input, 0xffff_ffff, [cmd, cmd]])).error).toMatch(/past the largest tick/);
   });
 
+  it('reads a snapshot ack riding on an input message and refuses one that is not a tick', () => {
+    const walk = { moveX: 1, moveZ: 2, yaw: 3, pitch: 4, buttons: 1 };
+    const carried = decodeClientMessage(encodeClientMessage({ type: 'input', firstTick: 40, commands: [walk], ackTick: 38 }));
+    expect(carried).toEqual({ ok: true, clampedCommands: 0, message: { type: 'input', firstTick: 40, commands: [walk], ackTick: 38 } });
+    const plain = decodeClientMessage(encodeClientMessage({ type: 'input', firstTick: 40, commands: [walk] }));
+    expect(plain.ok && plain.message.type === 'input' && 'ackTick' in plain.message).toBe(false);
+    expect(errorOf(packValue([ClientOpcode.Input, 40, [cmd], -1]))).toEqual({ code: ErrorCode.BadMessage, error: 'input.ackTick must be an integer tick in [0, 4294967295], got -1' });
+    expect(errorOf(packValue([ClientOpcode.Input, 40, [cmd], 2.5])).error).toMatch(/input.ackTick/);
+    expect(errorOf(packValue([ClientOpcode.Input, 40, [cmd], null])).error).toMatch(/input.ackTick/);
+    expect(errorOf(packValue([ClientOpcode.Input, 40, [cmd], { valueOf: 3 }])).error).toBe('input.ackTick must be an integer tick in [0, 4294967295], got an object');
+    expect(errorOf(packValue([ClientOpcode.Input, 40, [cmd], 38, 1])).error).toBe('input must have 2 or 3 fields, got 4');
+  });
+
   it('clamps out-of-range input values as validateInputCommand does and counts them', () => {
     const r = decodeClientMessage(packValue([ClientOpcode.Input, 3, [[500, -500, 70000, 99999, 0xff]]]));
     expect(r).toEqual({ ok: true, clampedCommands: 1, message: { type: 'input', firstTick: 3, commands: [{ moveX: 127, moveZ: -127, yaw: 70000 - 65536, pitch: 16384, buttons: 15 }] } });
