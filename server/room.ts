@@ -56,6 +56,8 @@ export interface RoomOptions {
   maxClients: number;
   /** Most bodies the world may hold; a join that would need more is refused. */
   maxBodies: number;
+  /** Most players the scenario serves (its per-tick character budget); joins beyond it are refused. Default none. */
+  maxPlayers?: number;
   /** Most ticks ahead of the server an input may be stamped. Default 120 (2 s). */
   maxInputLeadTicks?: number;
   /** Most ticks run back to back to catch up before slowing down. Default 4. */
@@ -270,6 +272,10 @@ export class Room implements HostedRoom {
     if (this.closed) throw new RoomError(ErrorCode.RoomNotFound, `room ${this.id} is closed`);
     if (this.players.size >= this.opts.maxClients) {
       throw new RoomError(ErrorCode.RoomFull, `room ${this.id} is full (${this.opts.maxClients} clients)`);
+    }
+    const cap = this.opts.maxPlayers;
+    if (cap !== undefined && this.players.size >= cap) {
+      throw new RoomError(ErrorCode.RoomFull, `room ${this.id} is full: scenario ${this.scenarioName} serves at most ${cap} players at 60 Hz (its per-tick character budget, players.maxPlayers)`);
     }
     const charactersPending = [...this.players.values()].filter((p) => !p.inWorld).length;
     if (this.lastBodyCount + charactersPending + 1 > this.opts.maxBodies) {

@@ -24,6 +24,11 @@ export const CHARACTER_SHAPE = Object.freeze({
   ],
 }) as ShapeSpec;
 
+/** Player cap of a scenario that declares none (players.maxPlayers). */
+export const DEFAULT_MAX_PLAYERS = 64;
+/** Highest player cap a scenario may declare. */
+export const MAX_PLAYERS_LIMIT = 4096;
+
 /** Player rules with every default filled in. */
 export interface ResolvedPlayerRules {
   walkSpeedMetresPerSecond: number;
@@ -32,6 +37,7 @@ export interface ResolvedPlayerRules {
   fireCooldownTicks: number;
   bulletLifetimeTicks: number;
   bulletSpeedMetresPerSecond: number;
+  maxPlayers: number;
 }
 
 /** Fills and checks a scenario's player rules. */
@@ -50,6 +56,7 @@ export function resolvePlayerRules(rules: PlayerRules = {}, scenarioName = 'scen
     fireCooldownTicks: num(rules.fireCooldownTicks, 10, 1, 3600, 'fireCooldownTicks', true),
     bulletLifetimeTicks: num(rules.bulletLifetimeTicks, 120, 1, 36000, 'bulletLifetimeTicks', true),
     bulletSpeedMetresPerSecond: num(rules.bulletSpeedMetresPerSecond, 40, 1, 1000, 'bulletSpeedMetresPerSecond'),
+    maxPlayers: num(rules.maxPlayers, DEFAULT_MAX_PLAYERS, 1, MAX_PLAYERS_LIMIT, 'maxPlayers', true),
   };
 }
 

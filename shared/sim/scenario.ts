@@ -45,6 +45,11 @@ export interface PlayerRules {
   bulletLifetimeTicks?: number;
   /** Bullet muzzle speed (m/s). Default 40. */
   bulletSpeedMetresPerSecond?: number;
+  /**
+   * Most players in the game at once: the per-tick character budget. Rooms refuse joins past it with a reason, and a
+   * tick record that would exceed it is rejected. Declare what the scene serves at 60 Hz on one core. Default 64.
+   */
+  maxPlayers?: number;
 }
 
 /** What a scenario may use while building and on each tick. Every call is deterministic. */

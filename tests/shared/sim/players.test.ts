@@ -118,6 +118,7 @@ describe('players', () => {
       fireCooldownTicks: 10,
       bulletLifetimeTicks: 120,
       bulletSpeedMetresPerSecond: 40,
+      maxPlayers: 64,
     });
     expect(() => resolvePlayerRules({ fireCooldownTicks: 0.5 }, 'x')).toThrow(/fireCooldownTicks must be an integer/);
     expect(() => resolvePlayerRules({ walkSpeedMetresPerSecond: NaN }, 'x')).toThrow(/walkSpeedMetresPerSecond/);
