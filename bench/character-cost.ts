@@ -5,7 +5,7 @@
 // same process in alternating batches, each side on its own Jolt module, so both see the same machine load.
 // The scene's player cap is lifted here: the figure is what N characters cost, not whether the room admits them.
 // Run: node_modules/.bin/node bench/character-cost.ts [--scene crowd-arena|shape-rain] [--players 64,256]
-//      [--warmup 180] [--ticks 300] [--batch 30] [--against DIR]
+//      [--warmup 180] [--ticks 300] [--batch 30] [--fire] [--against DIR]
 import { join, resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
 import { getScenario } from '../scenarios/index.ts';
@@ -27,7 +27,17 @@ interface Side {
   tickUs: number;
   updates: number;
   ticks: number;
-  probe: { measuring: boolean; moveUs: number; updates: number };
+  probe: Probe;
+}
+
+/** Times each tick's character-update loop as one span: its first update starts it, its `expected`-th ends it. */
+interface Probe {
+  measuring: boolean;
+  expected: number;
+  inTick: number;
+  startUs: number;
+  moveUs: number;
+  updates: number;
 }
 
 interface Checkout {
@@ -57,16 +67,19 @@ async function loadCheckout(dir: string, label: string): Promise<Checkout> {
   return {
     label,
     create: (def, params) => Simulation.create({ scenario: def, params, seed: 1, worldOptions: { isolatedModule: true } }),
-    bots: (n) => new BotScript({ seed: 1, bots: n, joinTicks: Array.from({ length: n }, () => 0) }),
+    bots: (n) => new BotScript({ seed: 1, bots: n, joinTicks: Array.from({ length: n }, () => 0), fire: firing }),
     instrument(probe) {
       const move = CharacterController.prototype.move;
       CharacterController.prototype.move = function (this: InstanceType<typeof CharacterController>, dtSeconds: number): void {
         const p = probe();
         if (!p?.measuring) return move.call(this, dtSeconds);
-        const t0 = cpuUs();
+        if (p.inTick === 0) p.startUs = cpuUs();
         move.call(this, dtSeconds);
-        p.moveUs += cpuUs() - t0;
-        p.updates++;
+        if (++p.inTick === p.expected) {
+          p.moveUs += cpuUs() - p.startUs;
+          p.updates += p.inTick;
+          p.inTick = 0;
+        }
       };
     },
   };
@@ -78,6 +91,8 @@ const warmupTicks = Number(flag('warmup') ?? 180);
 const measuredTicks = Number(flag('ticks') ?? 300);
 const batchTicks = Number(flag('batch') ?? 30);
 const againstDir = flag('against');
+/** Bots shoot only with --fire: the clients-per-core swarm does not. */
+const firing = process.argv.includes('--fire');
 
 const here = resolve(import.meta.dirname, '..');
 let current: Side | null = null;
@@ -85,7 +100,7 @@ const checkouts = [await loadCheckout(here, 'this checkout')];
 if (againstDir) checkouts.push(await loadCheckout(resolve(againstDir), resolve(againstDir)));
 for (const c of checkouts) c.instrument(() => current?.probe ?? null);
 
-// A per-call CPU clock read costs something itself: measure it, and subtract it from each update's time.
+// A CPU clock read costs something itself: measure it, and subtract one per timed loop.
 let clockCost = 0;
 {
   const n = 20000;
@@ -100,7 +115,7 @@ console.log(`character cost: ${sceneName}, warmup ${warmupTicks} ticks, ${measur
 for (const n of counts) {
   const sides: Side[] = [];
   for (const c of checkouts) {
-    const side: Side = { label: c.label, sim: await c.create(uncapped, {}), records: c.bots(n), moveUs: 0, tickUs: 0, updates: 0, ticks: 0, probe: { measuring: false, moveUs: 0, updates: 0 } };
+    const side: Side = { label: c.label, sim: await c.create(uncapped, {}), records: c.bots(n), moveUs: 0, tickUs: 0, updates: 0, ticks: 0, probe: { measuring: false, expected: 0, inTick: 0, startUs: 0, moveUs: 0, updates: 0 } };
     current = side;
     for (let t = 0; t < warmupTicks; t++) side.sim.step(side.records.next());
     sides.push(side);
@@ -110,6 +125,7 @@ for (const n of counts) {
     for (const side of order) {
       current = side;
       side.probe.measuring = true;
+      side.probe.expected = side.sim.playerIds().length; // every bot joined at tick 0 and stays
       const t0 = cpuUs();
       for (let t = 0; t < batchTicks; t++) side.sim.step(side.records.next());
       side.tickUs += cpuUs() - t0;
@@ -119,7 +135,7 @@ for (const n of counts) {
   }
   for (const side of sides) {
     const updates = side.probe.updates;
-    const moveUs = side.probe.moveUs - updates * clockCost;
+    const moveUs = side.probe.moveUs - side.ticks * clockCost;
     const present = side.sim.playerIds().length;
     console.log(
       `${n} players (${present} present) [${side.label}]: ${(moveUs / updates).toFixed(1)} µs CPU per character update, ` +

@@ -22,7 +22,7 @@ function checkSpawnPoint(core: SimCore, joinIndex: number): Vec3Like {
 function join(core: SimCore, j: PlayerJoin, tick: number): void {
   const joinIndex = core.players.joinCount;
   const feet = checkSpawnPoint(core, joinIndex);
-  const controller = createCharacter(core.world, j.playerId, joinIndex, feet);
+  const controller = createCharacter(core.world, core.rules, j.playerId, joinIndex, feet);
   core.players.joinCount++;
   const player = newPlayer(j.playerId, j.name, joinIndex, controller);
   if (core.gameInputFields.length > 0) player.input = { ...player.input, game: core.gameInputFields.map(() => 0) };
