@@ -136,7 +136,15 @@ export class PlayerTable {
   add(player: Player): void {
     if (this.players.has(player.playerId)) throw new Error(`player ${player.playerId} is already present`);
     this.players.set(player.playerId, player);
-    this.sorted = [...this.players.values()].sort((a, b) => a.playerId - b.playerId);
+    // Insert in id order (a crowd joining in one tick must not re-sort the table once per join).
+    let lo = 0;
+    let hi = this.sorted.length;
+    while (lo < hi) {
+      const mid = (lo + hi) >> 1;
+      if (this.sorted[mid].playerId < player.playerId) lo = mid + 1;
+      else hi = mid;
+    }
+    this.sorted = [...this.sorted.slice(0, lo), player, ...this.sorted.slice(lo)];
   }
 
   /** Removes a player and destroys its character. */
