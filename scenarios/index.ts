@@ -3,6 +3,7 @@
 import type { ScenarioDefinition } from '../shared/sim/scenario.ts';
 import { scenario as characterCourse } from './character-course.ts';
 import { scenario as convexHulls } from './convex-hulls.ts';
+import { scenario as crowdArena } from './crowd-arena.ts';
 import { scenario as cubes901 } from './cubes-901.ts';
 import { scenario as heightField } from './height-field.ts';
 import { scenario as meshTerrain } from './mesh-terrain.ts';
@@ -14,7 +15,7 @@ import { scenario as terrainBalls } from './terrain-balls.ts';
 export const DEFAULT_SCENARIO = 'character-course';
 
 const ALL: readonly ScenarioDefinition[] = Object.freeze(
-  [characterCourse, convexHulls, cubes901, heightField, meshTerrain, pendulumChain, shapeRain, terrainBalls].sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0)),
+  [characterCourse, convexHulls, crowdArena, cubes901, heightField, meshTerrain, pendulumChain, shapeRain, terrainBalls].sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0)),
 );
 const BY_NAME = new Map(ALL.map((s) => [s.name, s]));
 

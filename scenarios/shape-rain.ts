@@ -23,6 +23,9 @@ export const scenario: ScenarioDefinition = {
   },
   bounds: { min: { x: -40, y: -10, z: -40 }, max: { x: 40, y: 60, z: 40 } },
   golden: { ticks: 240, bots: 1 },
+  // Measured at 300 bodies: 128 players take ~3.7 ms of simulation per tick on one core (bench/character-cost.ts);
+  // past ~176 the 16 spawn slots crowd and character updates explode (issue 14).
+  players: { maxPlayers: 128 },
   world: { maxBodies: 10240, maxBodyPairs: 65536, maxContactConstraints: 16384 },
   build(ctx: ScenarioContext): ScenarioInstance {
     const p = ctx.params;

@@ -26,6 +26,7 @@ interface CostModel {
 const COST: Readonly<Record<string, CostModel>> = {
   'character-course': { msPerTick: 0.3 },
   'convex-hulls': { msPerTick: 2.2, load: (p) => (p.count ?? 150) / 150 },
+  'crowd-arena': { msPerTick: 0.3, load: (p) => (p.props ?? 256) / 256 },
   'cubes-901': { msPerTick: 0.12, load: (p) => ((p.side ?? 30) * (p.side ?? 30)) / 900 },
   'height-field': { msPerTick: 2.2, load: (p) => (p.bodyCount ?? 80) / 80 },
   'mesh-terrain': { msPerTick: 1.6, load: (p) => (p.bodyCount ?? 80) / 80 },

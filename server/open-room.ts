@@ -67,6 +67,7 @@ export function roomAround(spec: RoomSpec, built: RoomSimulationBuild, recorder:
     snapshotRateHz: opts.snapshotRateHz,
     maxClients: opts.maxClientsPerRoom,
     maxBodies: built.maxBodies,
+    maxPlayers: built.maxPlayers,
     maxCatchUpTicks: opts.maxCatchUpTicks,
     maxInputLeadTicks: opts.maxInputLeadTicks,
     pauseWhenEmpty: opts.pauseWhenEmpty,

@@ -30,6 +30,8 @@ export interface RoomSimulationBuild {
   bounds: { min: { x: number; y: number; z: number }; max: { x: number; y: number; z: number } };
   /** Most bodies the world holds. */
   maxBodies: number;
+  /** Most players the scenario serves (its per-tick character budget); absent: no cap beyond the room's. */
+  maxPlayers?: number;
   /** The parameters after defaults were filled in. */
   params: Readonly<Record<string, number>>;
 }

@@ -42,6 +42,8 @@ export interface RoomOptions {
   maxClients: number;
   /** Most bodies the world may hold; a join that would need more is refused. */
   maxBodies: number;
+  /** Most players the scenario serves (its per-tick character budget); joins beyond it are refused. Default none. */
+  maxPlayers?: number;
   /** Most ticks ahead of the server an input may be stamped. Default 120 (2 s). */
   maxInputLeadTicks?: number;
   /** Most ticks run back to back to catch up before slowing down. Default 4. */

@@ -181,6 +181,10 @@ export class Room implements HostedRoom {
     if (this.players.size >= this.opts.maxClients) {
       throw new RoomError(ErrorCode.RoomFull, `room ${this.id} is full (${this.opts.maxClients} clients)`);
     }
+    const cap = this.opts.maxPlayers;
+    if (cap !== undefined && this.players.size >= cap) {
+      throw new RoomError(ErrorCode.RoomFull, `room ${this.id} is full: scenario ${this.scenarioName} serves at most ${cap} players at 60 Hz (its per-tick character budget, players.maxPlayers)`);
+    }
     if (this.lastBodyCount + this.players.pendingJoinCount + 1 > this.opts.maxBodies) {
       throw new RoomError(ErrorCode.RoomFull, `room ${this.id} is at its body limit (${this.opts.maxBodies} bodies): no room for another character`);
     }

@@ -17,7 +17,7 @@ export const STOCK_SCENE = { scenario: 'shape-rain', params: { count: 300 }, lab
  * The scene made for crowds (spawn points and ground sized to the player cap, issue 14 item 2): measured by the
  * clients-per-core figure once a scenario of this name is registered, reported as not measured until then.
  */
-export const CROWD_SCENE = { scenario: 'crowd', params: {}, label: 'crowd' } as const;
+export const CROWD_SCENE = { scenario: 'crowd-arena', params: {}, label: 'crowd-arena' } as const;
 
 /** A scene: a registered scenario with parameters. */
 export interface Scene {

@@ -1,5 +1,6 @@
 // The server process of the clients-per-core and rooms-per-core figures: startServer (HTTP + ws on loopback, the
-// scene's default room) with the connection caps (total and per address) and room caps lifted, every room's ticks timed (wall and this thread's
+// scene's default room) with the connection caps (total and per address), room caps and, on the main thread, the scene's player
+// cap (players.maxPlayers: the figure measures what the server can serve, beside what the scene declares) lifted, every room's ticks timed (wall and this thread's
 // CPU), GC pauses observed, the process's own CPU time counted. Prints {"wsUrl"} when listening. Stdin commands:
 // "rooms N" opens rooms r1…rN of the same scene (prints {"rooms"}); "mark" starts a measurement window; "report"
 // prints the window as one JSON line. With ROOM_WORKERS > 0 the rooms run in worker threads and their figures come
@@ -8,7 +9,9 @@
 import { PerformanceObserver } from 'node:perf_hooks';
 import { createInterface } from 'node:readline';
 import type { Room } from '../../server/room.ts';
+import { scenarioSource } from '../../server/create-server.ts';
 import { silentLogger } from '../../server/logger.ts';
+import { listScenarios } from '../../scenarios/index.ts';
 import { createMetrics } from '../../server/metrics.ts';
 import { startServer } from '../../server/start-server.ts';
 import { gcPausePerTick, maxGap, type GcPause } from '../lib/rules.ts';
@@ -41,6 +44,8 @@ const server = await startServer({
   logger: silentLogger(),
   metrics,
   roomWorkers,
+  // Room workers build their scenarios from the registry by name, so only main-thread rooms get the lifted cap.
+  ...(roomWorkers === 0 ? { scenarios: scenarioSource(listScenarios().map((def) => (def.name === scenario ? { ...def, players: { ...def.players, maxPlayers: maxClients } } : def))) } : {}),
 });
 
 interface TickLog {

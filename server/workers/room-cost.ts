@@ -16,6 +16,7 @@ const ESTIMATES: Readonly<Record<string, (p: Readonly<Record<string, number>>) =
   'pendulum-chain': () => 0.8,
   'terrain-balls': () => 2,
   'cubes-901': () => 2.5,
+  'crowd-arena': (p) => 0.2 + (p.props ?? 256) * 0.0005,
 };
 
 /** A room of an unknown scenario counts as this many ms per tick until measured. */

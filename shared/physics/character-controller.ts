@@ -7,7 +7,7 @@ import type { BodyHandle } from './body-handle.ts';
 import type { JoltModule } from './jolt-backend.ts';
 import { checkNoCollideGroup } from './body-slots.ts';
 import { assertGroupBits, CollisionLayer, makeBroadPhaseFilter, makeObjectLayerFilter, packObjectLayer } from './layers.ts';
-import { worldInternals, type PhysicsWorld } from './physics-world.ts';
+import { worldInternals, type PhysicsWorld, type WorldInternals } from './physics-world.ts';
 import { restoreStateBytes, saveStateBytes, type JoltStateRecorder } from './state-recorder.ts';
 
 type J = JoltModule;
@@ -78,7 +78,7 @@ export class CharacterController {
   private readonly bodyFilter: InstanceType<J['BodyFilter']>;
   private readonly shapeFilter: InstanceType<J['ShapeFilter']>;
   private readonly scratch: InstanceType<J['Vec3']>;
-  private readonly gravity: InstanceType<J['Vec3']>;
+  private readonly internals: WorldInternals;
   private jumpRequested = 0;
   private destroyed = false;
   private readonly disposer: () => void;
@@ -87,6 +87,7 @@ export class CharacterController {
     const restoreIds = restoringIds;
     restoringIds = undefined;
     const internals = worldInternals(world);
+    this.internals = internals;
     const what = `CharacterController${opts.name ? ` "${opts.name}"` : ''}`;
     const J = world.jolt;
     this.world = world;
@@ -150,7 +151,6 @@ export class CharacterController {
     this.bodyFilter = new J.BodyFilter(); // owned here
     this.shapeFilter = new J.ShapeFilter(); // owned here
     this.scratch = new J.Vec3(0, 0, 0); // owned here
-    this.gravity = new J.Vec3(0, 0, 0); // owned here
 
     if (opts.innerBody !== false) {
       const innerId = this.character.GetInnerBodyID();
@@ -193,10 +193,7 @@ export class CharacterController {
     if (!Number.isFinite(v.x) || !Number.isFinite(v.y) || !Number.isFinite(v.z)) {
       throw new Error(`CharacterController.move: velocity must be finite, got (${v.x}, ${v.y}, ${v.z})`);
     }
-    const g = this.world.system.GetGravity(); // reused temporary
-    const gx = g.GetX();
-    const gy = g.GetY();
-    const gz = g.GetZ();
+    const gravity = this.internals.gravity; // the world's copy of Jolt's gravity (float32 values, a world-owned Vec3)
     const grounded = ch.GetGroundState() === this.J.EGroundState_OnGround;
     if (this.jumpRequested > 0) {
       v.y = this.jumpRequested;
@@ -205,11 +202,10 @@ export class CharacterController {
       const gv = ch.GetGroundVelocity(); // moving platforms carry the character
       v.y = gv.GetY();
     }
-    v.y += gy * dtSeconds;
+    v.y += gravity.y * dtSeconds;
     this.scratch.Set(v.x, v.y, v.z);
     ch.SetLinearVelocity(this.scratch);
-    this.gravity.Set(gx, gy, gz);
-    ch.ExtendedUpdate(dtSeconds, this.gravity, this.update, this.bpFilter, this.objFilter, this.bodyFilter, this.shapeFilter, this.world.tempAllocator);
+    ch.ExtendedUpdate(dtSeconds, gravity.vec, this.update, this.bpFilter, this.objFilter, this.bodyFilter, this.shapeFilter, this.internals.tempAllocator);
     const out = ch.GetLinearVelocity();
     v.x = out.GetX();
     v.y = out.GetY();
@@ -324,7 +320,7 @@ export class CharacterController {
     const J = this.J;
     if (this.body) internals.untrack(this.body);
     this.character.Release(); // our reference; the character (and its inner body) is freed when it reaches zero
-    for (const obj of [this.update, this.bpFilter, this.objFilter, this.bodyFilter, this.shapeFilter, this.scratch, this.gravity]) J.destroy(obj);
+    for (const obj of [this.update, this.bpFilter, this.objFilter, this.bodyFilter, this.shapeFilter, this.scratch]) J.destroy(obj);
   }
 
   /** Whether destroy() has run. */

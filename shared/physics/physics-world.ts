@@ -60,6 +60,13 @@ export interface WorldInternals {
   setNextBodyId(next: number): void;
   /** Makes every bulk read read every body (true) instead of only those that can have moved (tests compare both). */
   setEveryBodyReads(every: boolean): void;
+  /**
+   * Gravity as Jolt holds it (float32 values) and as a Jolt Vec3 owned by the world, kept by setGravity: characters
+   * read it every tick without asking Jolt.
+   */
+  readonly gravity: { x: number; y: number; z: number; readonly vec: InstanceType<J['Vec3']> };
+  /** Jolt's temp allocator of this world (fetched once). */
+  readonly tempAllocator: InstanceType<J['TempAllocator']>;
 }
 
 let internalsOf: (world: PhysicsWorld) => WorldInternals;
@@ -137,6 +144,8 @@ export class PhysicsWorld {
       setEveryBodyReads: (every) => {
         this.stateReader.everyBody = every;
       },
+      gravity: { x: 0, y: 0, z: 0, vec: new J.Vec3(0, 0, 0) }, // the Vec3 is owned by this world; destroyed in destroy()
+      tempAllocator: this.joltInterface.GetTempAllocator(),
     };
     this.setGravity(gravity.x, gravity.y, gravity.z);
   }
@@ -164,9 +173,12 @@ export class PhysicsWorld {
   setGravity(x: number, y: number, z: number): void {
     this.live();
     checkVec3({ x, y, z }, 'setGravity', 'gravity');
-    const g = new this.jolt.Vec3(x, y, z); // copied by SetGravity, freed at once
-    this.system.SetGravity(g);
-    this.jolt.destroy(g);
+    const g = this.internals.gravity;
+    g.vec.Set(x, y, z);
+    this.system.SetGravity(g.vec);
+    g.x = g.vec.GetX(); // float32, as Jolt holds it
+    g.y = g.vec.GetY();
+    g.z = g.vec.GetZ();
   }
 
   /** Variable step (seed §25.8): clamps to 1/30 s, two collision sub-steps above 1/55 s. */
@@ -420,6 +432,7 @@ export class PhysicsWorld {
     this.slots.dispose();
     this.stateReader.dispose(this.system);
     this.jolt.destroy(this.joltInterface);
+    this.jolt.destroy(this.internals.gravity.vec);
     this.sensors.dispose();
   }
 
@@ -524,7 +537,7 @@ export class PhysicsWorld {
 
   /** Jolt's temp allocator (character updates need it). */
   get tempAllocator(): InstanceType<J['TempAllocator']> {
-    return this.joltInterface.GetTempAllocator();
+    return this.internals.tempAllocator;
   }
 
   // ── bulk state ────────────────────────────────────────────────────────────────────────────────────────────

@@ -157,7 +157,7 @@ export function restoreData(core: SimCore, data: CheckpointData, restorePhysics:
       if (!p) {
         const rec = charRecords.get(s.bodyId);
         if (!rec) throw new Error(`restoreCheckpoint: no body record for player ${s.playerId}'s character ${s.bodyId}`);
-        const controller = createCharacter(world, s.playerId, s.joinIndex, rec.position, { id: s.bodyId, joltId: s.joltId });
+        const controller = createCharacter(world, core.rules, s.playerId, s.joinIndex, rec.position, { id: s.bodyId, joltId: s.joltId });
         p = { playerId: s.playerId, name: s.name, joinIndex: s.joinIndex, controller, bodyId: s.bodyId, input: { ...s.input }, nextFireTick: s.nextFireTick };
         core.players.add(p);
       }

@@ -24,6 +24,11 @@ export const CHARACTER_SHAPE = Object.freeze({
   ],
 }) as ShapeSpec;
 
+/** Player cap of a scenario that declares none (players.maxPlayers). */
+export const DEFAULT_MAX_PLAYERS = 64;
+/** Highest player cap a scenario may declare. */
+export const MAX_PLAYERS_LIMIT = 4096;
+
 /** Player rules with every default filled in. */
 export interface ResolvedPlayerRules {
   walkSpeedMetresPerSecond: number;
@@ -32,6 +37,9 @@ export interface ResolvedPlayerRules {
   fireCooldownTicks: number;
   bulletLifetimeTicks: number;
   bulletSpeedMetresPerSecond: number;
+  maxPlayers: number;
+  stepUpHeightMetres: number;
+  stickToFloorMetres: number;
 }
 
 /** Fills and checks a scenario's player rules. */
@@ -50,6 +58,9 @@ export function resolvePlayerRules(rules: PlayerRules = {}, scenarioName = 'scen
     fireCooldownTicks: num(rules.fireCooldownTicks, 10, 1, 3600, 'fireCooldownTicks', true),
     bulletLifetimeTicks: num(rules.bulletLifetimeTicks, 120, 1, 36000, 'bulletLifetimeTicks', true),
     bulletSpeedMetresPerSecond: num(rules.bulletSpeedMetresPerSecond, 40, 1, 1000, 'bulletSpeedMetresPerSecond'),
+    maxPlayers: num(rules.maxPlayers, DEFAULT_MAX_PLAYERS, 1, MAX_PLAYERS_LIMIT, 'maxPlayers', true),
+    stepUpHeightMetres: num(rules.stepUpHeightMetres, 0.4, 0, 10, 'stepUpHeightMetres'),
+    stickToFloorMetres: num(rules.stickToFloorMetres, 0.5, 0, 10, 'stickToFloorMetres'),
   };
 }
 
@@ -78,9 +89,14 @@ export interface PlayerSnapshot {
   nextFireTick: number;
 }
 
+/** The scenario rules a character is built with. */
+export type CharacterRules = Pick<ResolvedPlayerRules, 'stepUpHeightMetres' | 'stickToFloorMetres'>;
+
 /** Creates the character of a joining player at `feet`; `restoreIds` recreates a saved one exactly. */
-export function createCharacter(world: PhysicsWorld, playerId: number, joinIndex: number, feet: Vec3Like, restoreIds?: { id: number; joltId: number }): CharacterController {
+export function createCharacter(world: PhysicsWorld, rules: CharacterRules, playerId: number, joinIndex: number, feet: Vec3Like, restoreIds?: { id: number; joltId: number }): CharacterController {
   const opts: CharacterOptions = {
+    stepUpHeight: rules.stepUpHeightMetres,
+    stickToFloorDistance: rules.stickToFloorMetres,
     position: feet,
     radius: CHARACTER_RADIUS_METRES,
     halfHeight: CHARACTER_HALF_HEIGHT_METRES,
@@ -120,7 +136,15 @@ export class PlayerTable {
   add(player: Player): void {
     if (this.players.has(player.playerId)) throw new Error(`player ${player.playerId} is already present`);
     this.players.set(player.playerId, player);
-    this.sorted = [...this.players.values()].sort((a, b) => a.playerId - b.playerId);
+    // Insert in id order (a crowd joining in one tick must not re-sort the table once per join).
+    let lo = 0;
+    let hi = this.sorted.length;
+    while (lo < hi) {
+      const mid = (lo + hi) >> 1;
+      if (this.sorted[mid].playerId < player.playerId) lo = mid + 1;
+      else hi = mid;
+    }
+    this.sorted = [...this.sorted.slice(0, lo), player, ...this.sorted.slice(lo)];
   }
 
   /** Removes a player and destroys its character. */
@@ -178,10 +202,11 @@ export function applyCommand(p: Player, cmd: InputCommand, rules: ResolvedPlayer
   const c = p.controller;
   const v = walkVelocity(cmd, rules.walkSpeedMetresPerSecond, (cmd.buttons & Button.Sprint) !== 0);
   // On walkable ground the character also rides what it stands on (moving platforms, drifting crates).
-  const ground = c.isGrounded ? c.groundVelocity : null;
+  const grounded = c.isGrounded;
+  const ground = grounded ? c.groundVelocity : null;
   c.velocity.x = ground ? v.x + ground.x : v.x;
   c.velocity.z = ground ? v.z + ground.z : v.z;
-  if ((cmd.buttons & Button.Jump) !== 0 && c.isGrounded && !c.jumpPending) c.jump(rules.jumpSpeedMetresPerSecond);
+  if ((cmd.buttons & Button.Jump) !== 0 && grounded && !c.jumpPending) c.jump(rules.jumpSpeedMetresPerSecond);
   if ((cmd.buttons & Button.Fire) !== 0 && tick >= p.nextFireTick) {
     p.nextFireTick = tick + rules.fireCooldownTicks;
     return aimDirection(cmd);

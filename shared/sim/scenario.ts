@@ -45,6 +45,18 @@ export interface PlayerRules {
   bulletLifetimeTicks?: number;
   /** Bullet muzzle speed (m/s). Default 40. */
   bulletSpeedMetresPerSecond?: number;
+  /**
+   * Most players in the game at once: the per-tick character budget. Rooms refuse joins past it with a reason, and a
+   * tick record that would exceed it is rejected. Declare what the scene serves at 60 Hz on one core. Default 64.
+   */
+  maxPlayers?: number;
+  /**
+   * Highest step a character walks up by itself (m). Default 0.4. 0 turns stair walking off: a flat scene saves the
+   * extra sweeps a character makes whenever something blocks its way (another player, a wall).
+   */
+  stepUpHeightMetres?: number;
+  /** How far a character that walks off an edge snaps down to the floor (m); default 0.5, 0 turns it off. */
+  stickToFloorMetres?: number;
 }
 
 /** What a scenario may use while building and on each tick. Every call is deterministic. */

@@ -125,6 +125,11 @@ export class Simulation {
     return this.core.tick;
   }
 
+  /** Most players in the game at once (the scenario's players.maxPlayers): joins past it are rejected. */
+  get maxPlayers(): number {
+    return this.core.rules.maxPlayers;
+  }
+
   /** The scenario's name. */
   get scenarioName(): string {
     return this.core.def.name;

@@ -22,7 +22,7 @@ function checkSpawnPoint(core: SimCore, joinIndex: number): Vec3Like {
 function join(core: SimCore, j: PlayerJoin, tick: number): void {
   const joinIndex = core.players.joinCount;
   const feet = checkSpawnPoint(core, joinIndex);
-  const controller = createCharacter(core.world, j.playerId, joinIndex, feet);
+  const controller = createCharacter(core.world, core.rules, j.playerId, joinIndex, feet);
   core.players.joinCount++;
   const player = newPlayer(j.playerId, j.name, joinIndex, controller);
   if (core.gameInputFields.length > 0) player.input = { ...player.input, game: core.gameInputFields.map(() => 0) };
@@ -88,6 +88,10 @@ function hook(core: SimCore, name: string, run: () => void): void {
 export function runTick(core: SimCore, raw: unknown): SimEvent[] {
   if (core.failure) throw new Error(`the simulation failed at tick ${core.tick} and must be restored from a checkpoint: ${core.failure.message}`);
   const rec: TickInputRecord = validateTickRecord(raw, core.tick, (id) => core.players.has(id), core.gameInputFields, core.gameMessageKinds);
+  const after = core.players.size - rec.leaves.length + rec.joins.length;
+  if (rec.joins.length > 0 && after > core.rules.maxPlayers) {
+    throw new Error(`step(tick ${core.tick}): ${after} players would be in the game, but scenario ${core.def.name} serves at most ${core.rules.maxPlayers} (players.maxPlayers, its per-tick character budget)`);
+  }
   const tick = core.tick;
   core.currentTick = tick;
   core.tickEvents = [];

@@ -4,7 +4,7 @@ import { describe, expect, it } from 'vitest';
 import { DEFAULT_SCENARIO, getScenario, listScenarios, scenarioNames } from '../../scenarios/index.ts';
 import { resolveParams } from '../../shared/sim/scenario.ts';
 
-const EXPECTED = ['character-course', 'convex-hulls', 'cubes-901', 'height-field', 'mesh-terrain', 'pendulum-chain', 'shape-rain', 'terrain-balls'];
+const EXPECTED = ['character-course', 'convex-hulls', 'crowd-arena', 'cubes-901', 'height-field', 'mesh-terrain', 'pendulum-chain', 'shape-rain', 'terrain-balls'];
 
 describe('scenarios/index', () => {
   it('lists every built-in scenario, sorted by name', () => {

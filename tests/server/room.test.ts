@@ -169,6 +169,25 @@ describe('Room', () => {
     expect(() => tight.join(new Member(), 'b')).toThrow(/body limit/);
   });
 
+  it("refuses a join past the scenario's player cap with a reason, and takes one again after a leave", () => {
+    const { room, sim, clock } = makeRoom({ maxClients: 10, maxPlayers: 2 });
+    room.join(new Member(), 'a');
+    room.join(new Member(), 'b');
+    let refusal: unknown;
+    try {
+      room.join(new Member(), 'c');
+    } catch (e) {
+      refusal = e;
+    }
+    expect(refusal).toBeInstanceOf(RoomError);
+    expect((refusal as RoomError).code).toBe('room-full');
+    expect((refusal as RoomError).message).toMatch(/serves at most 2 players at 60 Hz \(its per-tick character budget/);
+    clock.advance(2 * TICK_MS);
+    expect(sim.players.size).toBe(2);
+    room.leave(1);
+    expect(room.join(new Member(), 'd').playerId).toBe(3);
+  });
+
   it('pauses while empty and resumes on a join', () => {
     const { room, sim, clock } = makeRoom();
     clock.advance(1000);

@@ -118,6 +118,9 @@ describe('players', () => {
       fireCooldownTicks: 10,
       bulletLifetimeTicks: 120,
       bulletSpeedMetresPerSecond: 40,
+      maxPlayers: 64,
+      stepUpHeightMetres: 0.4,
+      stickToFloorMetres: 0.5,
     });
     expect(() => resolvePlayerRules({ fireCooldownTicks: 0.5 }, 'x')).toThrow(/fireCooldownTicks must be an integer/);
     expect(() => resolvePlayerRules({ walkSpeedMetresPerSecond: NaN }, 'x')).toThrow(/walkSpeedMetresPerSecond/);
