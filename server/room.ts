@@ -21,6 +21,7 @@ import type { ServerMetrics } from './metrics.ts';
 import { RoomPace, type PaceReport } from './room-pace.ts';
 import { SnapshotFanOut } from './snapshot-fan-out.ts';
 import { TickClock } from './tick-clock.ts';
+import type { TickPhases } from './tick-phases.ts';
 import { TickTimes } from './monitor/tick-times.ts';
 
 import type { RoomMember, RoomRecorder, RoomSimulation, WorldFrame } from './room-contracts.ts';
@@ -65,6 +66,8 @@ export interface RoomOptions {
   recorder?: RoomRecorder | null;
   /** The catch-up budget of the thread the room runs on (shared by its rooms). Default none. */
   catchUp?: CatchUpGate | null;
+  /** The tick phases of the thread the room runs on: it takes one at creation and gives it back when it closes. */
+  phases?: TickPhases | null;
   /** A resumed room's players already in the game with their last commands, for predict mode's record stream. */
   predictInputs?: readonly PlayerInputState[];
   /** How the room serves its members (decided by net-mode-policy.ts). Default snapshot. */
@@ -142,6 +145,8 @@ export class Room implements HostedRoom {
   private snapshotAccumulator = 0;
   private cpuSecondsTotal = 0;
   private readonly paceMeter: RoomPace;
+  /** Where in the tick period the room ticks on its thread (null: from when it starts). */
+  private readonly phaseMs: number | null;
   private lastBodyCount = 0;
   // Static bodies the scene was built with: drawn from the welcome, never in snapshots. Statics spawned later
   // (streamed terrain) travel in snapshots instead, so clients already in the room learn about them.
@@ -181,11 +186,13 @@ export class Room implements HostedRoom {
     const initial = sim.readBodyStates();
     this.lastBodyCount = initial.count;
     for (let i = 0; i < initial.count; i++) if ((initial.flags[i] & BodyFlag.Static) !== 0) this.sceneStatics.add(initial.ids[i]);
+    this.phaseMs = opts.phases?.take() ?? null;
     this.tickClock = new TickClock({
       clock: opts.clock,
       tickRateHz: TICK_RATE_HZ,
       maxCatchUpTicks: opts.maxCatchUpTicks ?? 4,
       catchUp: opts.catchUp,
+      phaseMs: this.phaseMs,
       onTick: () => this.tickOnce(),
       onSlowdown: (r) => {
         opts.metrics.ticksSkipped.inc(r.skippedTicks);
@@ -517,6 +524,7 @@ export class Room implements HostedRoom {
     if (this.closedReason !== null) return;
     this.closedReason = reason;
     this.tickClock.stop();
+    if (this.phaseMs !== null) this.opts.phases?.release(this.phaseMs);
     const members = [...this.players.values()];
     this.opts.metrics.players.dec(members.length);
     this.players.clear();
