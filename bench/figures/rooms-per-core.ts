@@ -14,8 +14,11 @@ const GOAL = 20;
 const BOTS_PER_ROOM = 4;
 const SNAPSHOT_RATE_HZ = 30;
 const SNAPSHOT_INTERVAL_TICKS = TICK_RATE_HZ / SNAPSHOT_RATE_HZ;
-/** Rooms of the extra window that measures the main thread's CPU per client when the ladder stopped below it. */
-const CPU_PROBE_ROOMS = 12;
+/**
+ * Rooms of the extra window that measures CPU per room tick (and, with workers, the main thread's CPU per client) when
+ * the ladder stopped below it: the goal's count, so the CPU figures describe the load the goal asks for.
+ */
+const CPU_PROBE_ROOMS = GOAL;
 
 interface RoomsStep {
   rooms: number;
@@ -115,11 +118,11 @@ export async function runRoomsLadder(opts: { quick: boolean; log(m: string): voi
       results.set(r, step.pass);
       opts.log(`${r} room(s): ${step.pass ? 'pass' : `miss (${step.why})`}; worst tick gap ${step.worstGapMs} ms, client gap ${step.worstClientGapMs} ms, tick p99 ${step.worstTickP99Ms} ms, server CPU ${step.serverCpuShare} (${step.serverUsPerRoomTick} µs per room tick), GC p99/max ${step.gcPerTickP99Ms}/${step.gcMaxMs} ms, bots CPU ${step.botCpuShare} (loop delay max ${step.botLoopDelayMaxMs} ms)`);
     }
-    // The main thread's CPU per client wants many clients (its fixed cost spreads thin): one more window at a set count.
-    if (roomWorkers > 0 && Math.max(...steps.map((x) => x.rooms)) < CPU_PROBE_ROOMS) {
+    // CPU per room tick and per client want many rooms (the process's fixed cost spreads thin): one more window at the goal.
+    if (Math.max(...steps.map((x) => x.rooms)) < CPU_PROBE_ROOMS) {
       await openRooms(server, CPU_PROBE_ROOMS);
       const probe = await measure(CPU_PROBE_ROOMS);
-      opts.log(`${CPU_PROBE_ROOMS} rooms (main-thread CPU probe): ${probe.mainThreadUsPerClientTick} µs per client per tick on the main thread`);
+      opts.log(`${CPU_PROBE_ROOMS} rooms (CPU probe, ${probe.pass ? 'held' : `not held: ${probe.why}`}): ${probe.serverUsPerRoomTick} µs of server CPU per room tick, GC per tick p99 ${probe.gcPerTickP99Ms} ms, main thread ${probe.mainThreadUsPerClientTick} µs per client per tick`);
       cpuProbe = probe;
     }
   } finally {

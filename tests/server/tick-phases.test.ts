@@ -1,6 +1,8 @@
 // Tests for server/tick-phases.ts: rooms of one thread get tick phases spread over the period, and phase times.
 import { describe, expect, it } from 'vitest';
+import { TickClock } from '../../server/tick-clock.ts';
 import { nextPhaseTimeMs, TickPhases } from '../../server/tick-phases.ts';
+import { ManualClock } from '../../shared/clock.ts';
 
 describe('TickPhases', () => {
   it('spreads rooms over the period, each new one in the middle of the widest gap', () => {
@@ -25,6 +27,29 @@ describe('TickPhases', () => {
     expect(phases.take()).toBe(8);
     phases.release(99); // unknown: ignored
     expect(phases.phases).toEqual([0, 4, 8, 12]);
+  });
+});
+
+describe('TickPhases with TickClocks', () => {
+  it('keeps rooms that slowed down in the same stall apart afterwards, each back on its own phase', () => {
+    const clock = new ManualClock(0);
+    const phases = new TickPhases();
+    const rooms = [0, 1, 2, 3].map(() => new TickClock({ clock, phaseMs: phases.take(), onTick: () => {} }));
+    for (const r of rooms) r.start();
+    clock.advance(100);
+    // One stall hits every room: the loop wakes 300 ms late and polls them one after another.
+    for (const r of rooms) r.stop();
+    clock.advance(300);
+    for (const r of rooms) expect(r.poll()).toBe(1);
+    const offsets = rooms.map((r) => (((r.nextDueMs() % phases.periodMs) + phases.periodMs) % phases.periodMs).toFixed(3));
+    expect(new Set(offsets).size).toBe(4);
+    expect(offsets.map(Number).sort((a, b) => a - b)).toEqual(phases.phases.map((p) => Number(p.toFixed(3))));
+    // Without phases the same stall re-anchors them all on the same instant.
+    const plain = [0, 1].map(() => new TickClock({ clock, onTick: () => {} }));
+    plain.forEach((r) => r.poll());
+    clock.advance(300);
+    plain.forEach((r) => r.poll());
+    expect(plain[0].nextDueMs()).toBe(plain[1].nextDueMs());
   });
 });
 
