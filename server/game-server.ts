@@ -7,6 +7,7 @@ import type { SessionAccess } from './access/admission.ts';
 import { DEFAULT_RESUME_GRACE_MS, ResumeTokens } from './access/resume-tokens.ts';
 import type { SeatTokens } from './access/seat-tokens.ts';
 import { CatchUpBudget } from './catch-up-budget.ts';
+import { TickPhases } from './tick-phases.ts';
 import { SystemClock } from './clock.ts';
 import { ClientSession } from './client-session.ts';
 import { DEFAULT_SESSION_LIMITS, type SessionLimits } from './session-context.ts';
@@ -114,6 +115,7 @@ export class GameServer {
       host: this.workers,
       // Rooms on this thread share its loop: on the real clock, a late room may not run its catch-up ticks back to back.
       catchUp: this.clock instanceof SystemClock ? new CatchUpBudget() : null,
+      phases: this.clock instanceof SystemClock ? new TickPhases() : null,
       directory: opts.directory,
     });
     this.metrics.setRoomHeapSource(() => this.roomHeaps());

@@ -3,6 +3,7 @@
 import type { Clock } from '../shared/clock.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { CatchUpGate } from './catch-up-budget.ts';
+import type { TickPhases } from './tick-phases.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
 import { decideNetMode } from './net-mode-policy.ts';
@@ -23,6 +24,8 @@ export interface OpenRoomOptions {
   pauseWhenEmpty?: boolean;
   /** The catch-up budget of the calling thread (its rooms share it). */
   catchUp?: CatchUpGate | null;
+  /** The tick phases of the calling thread (each room takes one, spread over the tick period). */
+  phases?: TickPhases | null;
 }
 
 /** Builds a room (not started); throws RoomError for a bad scenario or parameters, or a recording that cannot start. */
@@ -73,6 +76,7 @@ export function roomAround(spec: RoomSpec, built: RoomSimulationBuild, recorder:
     pauseWhenEmpty: opts.pauseWhenEmpty,
     recorder,
     catchUp: opts.catchUp,
+    phases: opts.phases,
     predictInputs,
   });
 }

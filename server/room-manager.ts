@@ -4,6 +4,7 @@
 import type { Clock, TimerHandle } from '../shared/clock.ts';
 import { ErrorCode } from '../shared/protocol/opcodes.ts';
 import type { CatchUpGate } from './catch-up-budget.ts';
+import type { TickPhases } from './tick-phases.ts';
 import type { HostedRoom } from './hosted-room.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
@@ -97,6 +98,8 @@ export interface RoomManagerOptions {
   pauseWhenEmpty?: boolean;
   /** The catch-up budget rooms opened on this thread share. Default none. */
   catchUp?: CatchUpGate | null;
+  /** The tick phases rooms opened on this thread spread over. Default none (each ticks from when it starts). */
+  phases?: TickPhases | null;
   /** Net mode of rooms not asked for one ('auto': predict where the cost estimate allows). Default 'auto'. */
   netMode?: NetModeRequest;
   /** Where rooms are opened; default: on this thread through `factory`. */

@@ -6,6 +6,7 @@ import type { NetMode } from '../shared/protocol/predict-messages.ts';
 import type { PlayerInputState } from '../shared/protocol/record-delta.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
 import type { CatchUpGate } from './catch-up-budget.ts';
+import type { TickPhases } from './tick-phases.ts';
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
 import type { NetModeRequest } from './net-mode-policy.ts';
@@ -53,6 +54,8 @@ export interface RoomOptions {
   recorder?: RoomRecorder | null;
   /** The catch-up budget of the thread the room runs on (shared by its rooms). Default none. */
   catchUp?: CatchUpGate | null;
+  /** The tick phases of the thread the room runs on: it takes one at creation and gives it back when it closes. */
+  phases?: TickPhases | null;
   /** A resumed room's players already in the game with their last commands, for predict mode's record stream. */
   predictInputs?: readonly PlayerInputState[];
   /** How the room serves its members (decided by net-mode-policy.ts). Default snapshot. */

@@ -19,6 +19,7 @@ import { heldInput, RoomError, type JoinResult, type RoomInfo, type RoomOptions 
 import { RoomPace } from './room-pace.ts';
 import { SnapshotFanOut } from './snapshot-fan-out.ts';
 import { TickClock } from './tick-clock.ts';
+import type { TickPhases } from './tick-phases.ts';
 import { TickTimes } from './monitor/tick-times.ts';
 
 import type { RoomMember, RoomSimulation, WorldFrame } from './room-contracts.ts';
@@ -53,6 +54,8 @@ export class Room implements HostedRoom {
   private snapshotAccumulator = 0;
   private cpuSecondsTotal = 0;
   private readonly paceMeter: RoomPace;
+  /** Where in the tick period the room ticks on its thread (null: from when it starts). */
+  private readonly phaseMs: number | null;
   private lastBodyCount = 0;
   // Static bodies the scene was built with: drawn from the welcome, never in snapshots. Statics spawned later
   // (streamed terrain) travel in snapshots instead, so clients already in the room learn about them.
@@ -93,11 +96,13 @@ export class Room implements HostedRoom {
     const initial = sim.readBodyStates();
     this.lastBodyCount = initial.count;
     for (let i = 0; i < initial.count; i++) if ((initial.flags[i] & BodyFlag.Static) !== 0) this.sceneStatics.add(initial.ids[i]);
+    this.phaseMs = opts.phases?.take() ?? null;
     this.tickClock = new TickClock({
       clock: opts.clock,
       tickRateHz: TICK_RATE_HZ,
       maxCatchUpTicks: opts.maxCatchUpTicks ?? 4,
       catchUp: opts.catchUp,
+      phaseMs: this.phaseMs,
       onTick: () => this.tickOnce(),
       onSlowdown: (r) => {
         opts.metrics.ticksSkipped.inc(r.skippedTicks);
@@ -379,6 +384,7 @@ export class Room implements HostedRoom {
     if (this.closedReason !== null) return;
     this.closedReason = reason;
     this.tickClock.stop();
+    if (this.phaseMs !== null) this.opts.phases?.release(this.phaseMs);
     const members = this.players.clear();
     this.opts.metrics.players.dec(members.length);
     for (const p of members) {

@@ -1,8 +1,10 @@
-// The fixed-rate tick driver: tick k is due at start + k × dt on a monotonic Clock (absolute targets, so no drift),
-// runs late ticks back to back up to a catch-up limit (and only while its thread's catch-up budget allows), then gives
-// up the lost time (slows down) and reports it.
+// The fixed-rate tick driver: tick k is due at origin + k × dt on a monotonic Clock (absolute targets, so no drift),
+// the origin placed on the room's phase of its thread's tick period when it has one (tick-phases.ts). A few late ticks
+// are caught up (past the first of a wake-up, only while its thread's catch-up budget allows); a room further behind
+// than the catch-up limit runs one tick, gives up the rest of the lost time and says so, instead of running a burst.
 import type { Clock, TimerHandle } from '../shared/clock.ts';
 import type { CatchUpGate } from './catch-up-budget.ts';
+import { nextPhaseTimeMs } from './tick-phases.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 
 /** What the driver reports when it had to give up time instead of catching up. */
@@ -20,8 +22,13 @@ export interface TickClockOptions {
   clock: Clock;
   /** Ticks per second; default TICK_RATE_HZ (60). */
   tickRateHz?: number;
-  /** Most ticks run back to back in one wake-up before giving up time; default 4. */
+  /** Most overdue ticks that are caught up; a room further behind runs one tick and gives up the rest. Default 4. */
   maxCatchUpTicks?: number;
+  /**
+   * Where in the tick period this clock ticks (ms in [0, dt), counted from the clock's zero): start() and a slowdown
+   * put the next tick on it. Default none: start() ticks at once and a slowdown ticks one dt later.
+   */
+  phaseMs?: number | null;
   /** Runs one tick (its index counts from 0 at start()). An exception stops the clock and goes to onError. */
   onTick: (tick: number) => void;
   /** Called after a slowdown. */
@@ -45,6 +52,7 @@ export class TickClock {
   private readonly onSlowdown: ((r: SlowdownReport) => void) | undefined;
   private readonly onError: ((e: unknown) => void) | undefined;
   private readonly catchUp: CatchUpGate | null;
+  private readonly phaseMs: number | null;
   private originMs = 0;
   private ticks = 0;
   private running = false;
@@ -65,6 +73,9 @@ export class TickClock {
     this.onSlowdown = opts.onSlowdown;
     this.onError = opts.onError;
     this.catchUp = opts.catchUp ?? null;
+    const phase = opts.phaseMs ?? null;
+    if (phase !== null && !(phase >= 0 && phase < this.dtMs)) throw new Error(`TickClock: phaseMs must be in [0, ${this.dtMs}), got ${phase}`);
+    this.phaseMs = phase;
   }
 
   /** Ticks run so far (the index the next tick will get). */
@@ -97,11 +108,13 @@ export class TickClock {
     return Math.max(0, this.clock.nowMs() - this.dueAt(this.ticks));
   }
 
-  /** Starts the timer loop; tick 0 is due immediately. */
+  /** Starts the timer loop; the next tick is due now, or at the clock's phase when it has one. */
   start(): void {
     if (this.running) return;
     this.running = true;
-    this.originMs = this.clock.nowMs() - this.ticks * this.dtMs;
+    const now = this.clock.nowMs();
+    const firstMs = this.phaseMs === null ? now : nextPhaseTimeMs(now, this.dtMs, this.phaseMs);
+    this.originMs = firstMs - this.ticks * this.dtMs;
     this.schedule();
   }
 
@@ -113,34 +126,41 @@ export class TickClock {
   }
 
   /**
-   * Runs every tick due now, at most maxCatchUpTicks (past the first, only while the catch-up budget allows: the rest
-   * stay due for the next wake-up); if more than maxCatchUpTicks were due, gives up the rest (the next tick becomes
-   * due one dt from now) and reports a slowdown. Returns how many ticks ran.
+   * Runs the ticks due now. Up to maxCatchUpTicks overdue run (past the first, only while the catch-up budget allows:
+   * the rest stay due for the next wake-up). More overdue than that: the room is too far behind for catching up to
+   * help, so it runs one tick, gives up the rest (the next tick is due one dt from now, or at its phase at least half a
+   * dt from now) and reports a slowdown: a burst of back-to-back ticks would only stall its thread's other rooms.
+   * Returns how many ticks ran.
    */
   poll(): number {
     const now = this.clock.nowMs();
     let due = 0;
     while (due <= this.maxCatchUpTicks && this.dueAt(this.ticks + due) <= now + EPSILON_MS) due++;
-    const allowed = Math.min(due, this.maxCatchUpTicks);
-    let run = 0;
-    for (; run < allowed; run++) {
-      if (run > 0 && this.catchUp !== null && !this.catchUp.allows()) break;
-      const tick = this.ticks;
-      this.ticks++;
-      const startedMs = this.catchUp === null ? 0 : performance.now();
-      this.onTick(tick);
-      this.catchUp?.spend(performance.now() - startedMs);
-    }
     if (due > this.maxCatchUpTicks) {
-      // More were due than we may catch up: count every overdue tick, then re-anchor so the next is due in one dt.
-      const behindMs = now - this.dueAt(this.ticks);
-      const skipped = Math.floor(behindMs / this.dtMs + EPSILON_MS) + 1;
-      this.originMs = now + this.dtMs - this.ticks * this.dtMs;
+      // Count every overdue tick but the one run now, then re-anchor.
+      const skipped = Math.floor((now - this.dueAt(this.ticks)) / this.dtMs + EPSILON_MS);
+      this.runTick();
+      const nextMs = this.phaseMs === null ? now + this.dtMs : nextPhaseTimeMs(now + this.dtMs / 2, this.dtMs, this.phaseMs);
+      this.originMs = nextMs - this.ticks * this.dtMs;
       this.slowdownCount++;
       this.skippedTotal += skipped;
       this.onSlowdown?.({ tick: this.ticks, skippedTicks: skipped, lostMs: skipped * this.dtMs });
+      return 1;
+    }
+    let run = 0;
+    for (; run < due; run++) {
+      if (run > 0 && this.catchUp !== null && !this.catchUp.allows()) break;
+      this.runTick();
     }
     return run;
+  }
+
+  private runTick(): void {
+    const tick = this.ticks;
+    this.ticks++;
+    const startedMs = this.catchUp === null ? 0 : performance.now();
+    this.onTick(tick);
+    this.catchUp?.spend(performance.now() - startedMs);
   }
 
   private dueAt(tick: number): number {

@@ -45,27 +45,66 @@ export function judgeClientWindow(w: ClientWindow): Verdict {
   return { pass: reasons.length === 0, reasons };
 }
 
-/** One room in a rooms-per-core window. */
+/** One room in a rooms-per-core window, as the server and its clients saw it. */
 export interface RoomWindow {
   id: string;
   ticks: number;
   /** Longest gap between two consecutive tick starts (ms); null when fewer than two ticks ran. */
   maxGapMs: number | null;
+  /** p99 of its tick times (ms); null when not measured. */
+  tickP99Ms: number | null;
+  /** Players in the room at the end of the window. */
+  clients: number;
+  /** Snapshots its clients received in the window. */
+  snapshots: number;
+  /** Longest time between two snapshots arriving at one of its clients (ms); null when none saw two. */
+  clientGapMs: number | null;
+  /** Largest step between the ticks of two snapshots one of its clients received in a row; null when none saw two. */
+  clientTickStep: number | null;
 }
 
-/** A room count passes when every room ran ≥ 99% of its ticks and no room's tick starts were more than 2 ticks apart. */
-export function judgeRoomsWindow(seconds: number, rooms: readonly RoomWindow[]): Verdict {
+/** What a rooms window is judged against. */
+export interface RoomsRule {
+  /** Players each room must hold (more means players of an earlier step were left in it; fewer, some dropped). */
+  botsPerRoom: number;
+  /** Ticks between two snapshots (2 at 30 Hz snapshots). */
+  snapshotIntervalTicks: number;
+}
+
+/** Longest a client may wait between two snapshots (ms): their spacing plus 2 ticks. */
+export function maxClientGapMs(snapshotIntervalTicks: number): number {
+  return (snapshotIntervalTicks + MAX_ROOM_TICK_GAP_TICKS) * TICK_BUDGET_MS;
+}
+
+/**
+ * A room count holds when every room ran ≥ 99% of 60 ticks/s with tick p99 < 16.7 ms, its tick starts at most 2 ticks
+ * apart, the expected players in it, and its clients saw every snapshot (tick steps of one snapshot interval) with no
+ * wait longer than the interval plus 2 ticks.
+ */
+export function judgeRoomsWindow(seconds: number, rooms: readonly RoomWindow[], rule: RoomsRule): Verdict {
   const reasons: string[] = [];
   if (rooms.length === 0) reasons.push('no rooms');
+  const count = (what: string, bad: readonly RoomWindow[], worst?: string): void => {
+    if (bad.length > 0) reasons.push(`${bad.length} room(s) ${what}${worst ? ` (worst ${worst})` : ''}`);
+  };
   const wanted = seconds * TICK_RATE_HZ * MIN_TICK_RATE_SHARE;
-  const slow = rooms.filter((r) => !(r.ticks >= wanted));
-  if (slow.length > 0) reasons.push(`${slow.length} room(s) below ${TICK_RATE_HZ} ticks/s`);
+  count(`below ${TICK_RATE_HZ} ticks/s`, rooms.filter((r) => !(r.ticks >= wanted)));
+  const worstMs = (bad: readonly RoomWindow[], pick: (r: RoomWindow) => number | null): string => {
+    const worst = Math.max(...bad.map((r) => pick(r) ?? Infinity));
+    return Number.isFinite(worst) ? `${worst.toFixed(1)} ms` : 'not measured';
+  };
+  const slowP99 = rooms.filter((r) => r.tickP99Ms === null || !(r.tickP99Ms < TICK_BUDGET_MS));
+  count(`with tick p99 ≥ ${TICK_BUDGET_MS.toFixed(1)} ms`, slowP99, worstMs(slowP99, (r) => r.tickP99Ms));
   const limitMs = MAX_ROOM_TICK_GAP_TICKS * TICK_BUDGET_MS;
   const gapped = rooms.filter((r) => r.maxGapMs === null || r.maxGapMs > limitMs);
-  if (gapped.length > 0) {
-    const worst = Math.max(...gapped.map((r) => r.maxGapMs ?? Infinity));
-    reasons.push(`${gapped.length} room(s) with a tick gap > ${MAX_ROOM_TICK_GAP_TICKS} ticks (worst ${Number.isFinite(worst) ? `${worst.toFixed(1)} ms` : 'no ticks'})`);
-  }
+  count(`with a tick gap > ${MAX_ROOM_TICK_GAP_TICKS} ticks`, gapped, worstMs(gapped, (r) => r.maxGapMs));
+  const crowded = rooms.filter((r) => r.clients !== rule.botsPerRoom);
+  count(`without exactly ${rule.botsPerRoom} players`, crowded, undefined);
+  const skipped = rooms.filter((r) => r.clientTickStep === null || r.clientTickStep > rule.snapshotIntervalTicks);
+  count('whose clients missed a snapshot', skipped, undefined);
+  const clientLimitMs = maxClientGapMs(rule.snapshotIntervalTicks);
+  const waited = rooms.filter((r) => r.clientGapMs === null || r.clientGapMs > clientLimitMs);
+  count(`whose clients waited > ${clientLimitMs.toFixed(1)} ms for a snapshot`, waited, worstMs(waited, (r) => r.clientGapMs));
   return { pass: reasons.length === 0, reasons };
 }
 
@@ -81,6 +120,8 @@ export function maxGap(timesMs: readonly number[]): number | null {
 export interface GcPause {
   startTime: number;
   duration: number;
+  /** Whether it was a full (mark-compact) collection; absent when not known. */
+  major?: boolean;
 }
 
 /**

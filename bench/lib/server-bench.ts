@@ -33,13 +33,27 @@ export interface RoomReport {
   maxGapMs: number | null;
 }
 
+/** GC pauses of one window (ms): count, total, longest, and the p99 of the pause time per tick-length interval. */
+export interface GcSummary {
+  pauses: number;
+  totalMs: number;
+  maxMs: number;
+  perTickP99Ms: number;
+  /** Full (mark-compact) collections among them and the longest (null where the kind is not reported). */
+  majorPauses: number | null;
+  majorMaxMs: number | null;
+}
+
 /** The server's view of one window. */
 export interface ServerReport {
   seconds: number;
   /** The server process's own CPU time in the window (every thread: main, GC helpers, libuv). */
   cpuMs: number;
   cpuShare: number;
-  gc: { pauses: number; totalMs: number; maxMs: number; perTickP99Ms: number };
+  /** The main thread's GC pauses in the window. */
+  gc: GcSummary;
+  /** GC pauses of the threads the rooms tick on (the main thread's, or the room workers' merged). */
+  roomThreadsGc: GcSummary;
   snapshotsSent: number;
   snapshotsSkipped: number;
   ticksSkipped: number;
@@ -63,6 +77,10 @@ export interface SwarmReport {
   closedClients: number;
   protocolErrors: number;
   cpuShare: number;
+  /** The light swarm's own event-loop delay in the window (ms); absent for the client-library swarm. */
+  loopDelayMs?: { p99: number; max: number };
+  /** Each room's snapshots as the light swarm's bots saw them (rooms r1…rN; empty in the default room). */
+  rooms?: Array<{ id: string; snapshots: number; maxArrivalGapMs: number; maxTickStep: number }>;
 }
 
 /** A running server process. */

@@ -4,15 +4,17 @@
 // CPU), GC pauses observed, the process's own CPU time counted. Prints {"wsUrl"} when listening. Stdin commands:
 // "rooms N" opens rooms r1…rN of the same scene (prints {"rooms"}); "mark" starts a measurement window; "report"
 // prints the window as one JSON line. With ROOM_WORKERS > 0 the rooms run in worker threads and their figures come
-// from the server's own room list (pace: ticks, tick p99s, longest gap between tick starts).
+// from the server's own room list (pace: ticks, tick p99s, longest gap between tick starts) and their GC pauses from
+// the workers' status reports.
 // Run: node bench/procs/bench-server.ts SCENARIO PARAMS_JSON SNAPSHOT_HZ MAX_CLIENTS [ROOM_WORKERS]
-import { PerformanceObserver } from 'node:perf_hooks';
+import { constants, PerformanceObserver } from 'node:perf_hooks';
 import { createInterface } from 'node:readline';
 import type { Room } from '../../server/room.ts';
 import { scenarioSource } from '../../server/create-server.ts';
 import { silentLogger } from '../../server/logger.ts';
 import { listScenarios } from '../../scenarios/index.ts';
 import { createMetrics } from '../../server/metrics.ts';
+import { GC_PAUSE_FIELDS, STATUS_INTERVAL_MS } from '../../server/workers/worker-protocol.ts';
 import { startServer } from '../../server/start-server.ts';
 import { gcPausePerTick, maxGap, type GcPause } from '../lib/rules.ts';
 import { quantile, round } from '../lib/stats.ts';
@@ -80,7 +82,7 @@ let ticksAtMark = new Map<string, number>();
 
 const pauses: GcPause[] = [];
 const gcObserver = new PerformanceObserver((list) => {
-  for (const e of list.getEntries()) pauses.push({ startTime: e.startTime, duration: e.duration });
+  for (const e of list.getEntries()) pauses.push({ startTime: e.startTime, duration: e.duration, major: (e as PerformanceEntry & { detail?: { kind?: number } }).detail?.kind === constants.NODE_PERFORMANCE_GC_MAJOR });
 });
 gcObserver.observe({ entryTypes: ['gc'] });
 
@@ -134,24 +136,50 @@ function workerRooms(): unknown[] {
     }));
 }
 
+/** The room workers' GC pauses that started in [fromMs, toMs) of this thread's performance clock, all workers merged. */
+function workerGcPauses(fromMs: number, toMs: number): GcPause[] {
+  const out: GcPause[] = [];
+  for (const t of server.game.workers?.workers() ?? []) {
+    for (let i = 0; i < t.gcPauses.length; i += GC_PAUSE_FIELDS) {
+      const startTime = t.gcPauses[i] - performance.timeOrigin;
+      if (startTime >= fromMs && startTime < toMs) out.push({ startTime, duration: t.gcPauses[i + 1], major: t.gcPauses[i + 2] === constants.NODE_PERFORMANCE_GC_MAJOR });
+    }
+  }
+  return out.sort((a, b) => a.startTime - b.startTime);
+}
+
+/** GC pauses of one window: count, total, longest, and the p99 of the pause time per tick-length interval. */
+function gcSummary(fromMs: number, toMs: number, windowPauses: readonly GcPause[]): { pauses: number; totalMs: number; maxMs: number; perTickP99Ms: number; majorPauses: number | null; majorMaxMs: number | null } {
+  const kinds = windowPauses.filter((p) => p.major !== undefined);
+  const majors = kinds.filter((p) => p.major);
+  return {
+    majorPauses: kinds.length > 0 ? majors.length : null,
+    majorMaxMs: kinds.length > 0 ? round(majors.reduce((m, p) => Math.max(m, p.duration), 0), 3) : null,
+    pauses: windowPauses.length,
+    totalMs: round(windowPauses.reduce((s, p) => s + p.duration, 0), 3),
+    maxMs: round(windowPauses.reduce((m, p) => Math.max(m, p.duration), 0), 3),
+    perTickP99Ms: round(quantile(gcPausePerTick(fromMs, toMs, windowPauses), 0.99), 3),
+  };
+}
+
 async function report(): Promise<unknown> {
-  const now = await counters();
   const endMs = performance.now();
   const cpu = process.cpuUsage(mark.cpu);
   const mainCpu = process.threadCpuUsage(mark.mainCpu);
+  const inWorkers = roomWorkers > 0 ? workerRooms() : [];
+  const now = await counters();
+  // Workers push their GC pauses with their status: wait two status intervals so the window's last ones are in.
+  if (roomWorkers > 0) await new Promise((r) => setTimeout(r, 2 * STATUS_INTERVAL_MS));
   const seconds = (endMs - mark.atMs) / 1000;
-  const perTickGc = gcPausePerTick(mark.atMs, endMs, pauses);
   const windowPauses = pauses.filter((p) => p.startTime >= mark.atMs && p.startTime < endMs);
+  const mainGc = gcSummary(mark.atMs, endMs, windowPauses);
   return {
     seconds,
     cpuMs: (cpu.user + cpu.system) / 1000,
     cpuShare: (cpu.user + cpu.system) / 1e6 / seconds,
-    gc: {
-      pauses: windowPauses.length,
-      totalMs: round(windowPauses.reduce((s, p) => s + p.duration, 0), 3),
-      maxMs: round(windowPauses.reduce((m, p) => Math.max(m, p.duration), 0), 3),
-      perTickP99Ms: round(quantile(perTickGc, 0.99), 3),
-    },
+    gc: mainGc,
+    // The GC of the threads the rooms tick on: the main thread's, or the room workers' (merged).
+    roomThreadsGc: roomWorkers > 0 ? gcSummary(mark.atMs, endMs, workerGcPauses(mark.atMs, endMs)) : mainGc,
     snapshotsSent: now.sent - mark.sent,
     snapshotsSkipped: now.skipped - mark.skipped,
     ticksSkipped: now.ticksSkipped - mark.ticksSkipped,
@@ -160,7 +188,7 @@ async function report(): Promise<unknown> {
     bytesSent: now.bytesOut - mark.bytesOut,
     mainThreadCpuMs: (mainCpu.user + mainCpu.system) / 1000,
     roomWorkers,
-    rooms: roomWorkers > 0 ? workerRooms() : logs
+    rooms: roomWorkers > 0 ? inWorkers : logs
       .filter((l) => l.startsMs.length > 0 || l.room.clientCount > 0)
       .map((l) => ({
         id: l.room.id,

@@ -1,10 +1,14 @@
 // A light bot swarm: N players that send the server exactly what the client library sends — hello, pings (5 quick,
 // then one a second) feeding the library's ClockSync, input messages from its InputSender (newest command plus 3
 // repeats) aimed by its InputLead on the library's half-tick pump, snapshot acks on them (its AckCarrier) — but only
-// read each snapshot's header instead of decoding it, so one core of bots can load a server core. Prints {"ready"}, {"window"}
-// after SETTLE_MS, {"report"} after WINDOW_MS, and plays on until stopped.
+// read each snapshot's header instead of decoding it, so one core of bots can load a server core. Prints {"ready"},
+// {"window"} after SETTLE_MS, {"report"} after WINDOW_MS (with each room's snapshot gaps as its bots saw them and the
+// swarm's own event-loop delay, which shows whether the bots themselves were late), and plays on until stopped; SIGTERM
+// closes every socket with a close frame first, so the server lets the players go instead of holding them for a
+// reconnect.
 // Run: node bench/procs/light-swarm.ts WS_URL CLIENTS SETTLE_MS WINDOW_MS [ROOMS]
 // (ROOMS 0: everyone in the default room; R > 0: client i joins room r((i mod R) + 1)).
+import { monitorEventLoopDelay } from 'node:perf_hooks';
 import WebSocket from 'ws';
 import { decodeServerMessage, DEFAULT_INPUT_REDUNDANCY, encodeClientMessage, PROTOCOL_VERSION, readSnapshotHeader, type ClientMessage } from '../../shared/protocol/index.ts';
 import { BotScript } from '../../shared/sim/bots.ts';
@@ -29,6 +33,11 @@ const PUMP_SPACING_TICKS = 0.5;
 
 interface LightBot {
   ws: WebSocket;
+  /** Index of its room (0 when everyone is in the default room). */
+  room: number;
+  /** performance.now() and tick of its last snapshot in the window (-1: none yet). */
+  lastSnapshotMs: number;
+  lastSnapshotTick: number;
   sync: ClockSync | null;
   lead: InputLead | null;
   sender: InputSender;
@@ -43,6 +52,31 @@ interface LightBot {
 const sent = { input: 0, ack: 0, ping: 0, bytes: 0 };
 const received = { snapshots: 0, bytes: 0, messages: 0 };
 let protocolErrors = 0;
+/** Whether the measurement window is open (snapshot gaps count only inside it). */
+let measuring = false;
+
+/** One room's snapshots as its bots saw them in the window. */
+interface RoomGaps {
+  snapshots: number;
+  /** Longest time between two snapshots arriving at one of its bots (ms). */
+  maxArrivalGapMs: number;
+  /** Largest step between the ticks of two snapshots one of its bots received in a row. */
+  maxTickStep: number;
+}
+const roomGaps: RoomGaps[] = Array.from({ length: Math.max(1, rooms) }, () => ({ snapshots: 0, maxArrivalGapMs: 0, maxTickStep: 0 }));
+
+function sawSnapshot(b: LightBot, tick: number, nowMs: number): void {
+  if (measuring) {
+    const g = roomGaps[b.room];
+    g.snapshots++;
+    if (b.lastSnapshotMs >= 0) {
+      g.maxArrivalGapMs = Math.max(g.maxArrivalGapMs, nowMs - b.lastSnapshotMs);
+      g.maxTickStep = Math.max(g.maxTickStep, tick - b.lastSnapshotTick);
+    }
+  }
+  b.lastSnapshotMs = nowMs;
+  b.lastSnapshotTick = tick;
+}
 
 function send(b: LightBot, m: ClientMessage): void {
   if (b.ws.readyState !== WebSocket.OPEN) return;
@@ -70,7 +104,9 @@ function onMessage(b: LightBot, data: Buffer): void {
   const m = r.message;
   if (m.type === 'snapshot') {
     received.snapshots++;
-    b.acks.decoded(readSnapshotHeader(m.bytes).tick);
+    const tick = readSnapshotHeader(m.bytes).tick;
+    sawSnapshot(b, tick, now);
+    b.acks.decoded(tick);
   } else if (m.type === 'pong' && b.sync) {
     b.sync.addSample({ sentLocalMs: m.clientTimeMs, receivedLocalMs: now, serverTick: m.serverTick, serverTimeMs: m.serverTimeMs });
     b.missedInputTicks = m.missedInputTicks;
@@ -84,7 +120,7 @@ function onMessage(b: LightBot, data: Buffer): void {
 
 function connectBot(i: number): Promise<LightBot> {
   const ws = new WebSocket(url, { perMessageDeflate: false });
-  const bot: LightBot = { ws, sync: null, lead: null, sender: new InputSender({ redundancy: DEFAULT_INPUT_REDUNDANCY }), acks: new AckCarrier(), missedInputTicks: null, pingsSent: 0, nextPingMs: 0, closed: false };
+  const bot: LightBot = { ws, room: rooms > 0 ? i % rooms : 0, lastSnapshotMs: -1, lastSnapshotTick: -1, sync: null, lead: null, sender: new InputSender({ redundancy: DEFAULT_INPUT_REDUNDANCY }), acks: new AckCarrier(), missedInputTicks: null, pingsSent: 0, nextPingMs: 0, closed: false };
   return new Promise((resolve, reject) => {
     ws.on('open', () => send(bot, { type: 'hello', version: PROTOCOL_VERSION, name: `light-${i + 1}`, room: rooms > 0 ? `r${(i % rooms) + 1}` : null }));
     ws.on('message', (data: Buffer) => {
@@ -140,9 +176,15 @@ const steer = setInterval(() => {
 const pumper = setInterval(() => pump(bots), TICK_MS * PUMP_SPACING_TICKS);
 
 await new Promise((r) => setTimeout(r, settleMs));
+const loopDelay = monitorEventLoopDelay({ resolution: 5 });
+loopDelay.enable();
+for (const b of bots) b.lastSnapshotMs = -1;
+measuring = true;
 const start = { atMs: performance.now(), cpu: process.cpuUsage(), sent: { ...sent }, received: { ...received } };
 say({ window: true });
 await new Promise((r) => setTimeout(r, windowMs));
+measuring = false;
+loopDelay.disable();
 const seconds = (performance.now() - start.atMs) / 1000;
 const cpu = process.cpuUsage(start.cpu);
 const perClientPerSecond = (count: number): number => count / n / seconds;
@@ -160,12 +202,26 @@ say({
     closedClients: bots.filter((b) => b.closed).length,
     protocolErrors,
     cpuShare: (cpu.user + cpu.system) / 1e6 / seconds,
+    /** The swarm's own event-loop delay in the window (ms): large values mean the bots, not the server, were late. */
+    loopDelayMs: { p99: loopDelay.percentile(99) / 1e6, max: loopDelay.max / 1e6 },
+    rooms: rooms > 0 ? roomGaps.map((g, i) => ({ id: `r${i + 1}`, ...g })) : [],
   },
 });
 // Stay connected and sending while the server reports its side of the window (the figure then stops this process).
-setTimeout(() => {
+function leave(): void {
   clearInterval(steer);
   clearInterval(pumper);
-  for (const b of bots) b.ws.close();
-  setTimeout(() => process.exit(0), 500).unref();
-}, 5000);
+  let open = 0;
+  for (const b of bots) {
+    if (b.ws.readyState === WebSocket.CLOSED) continue;
+    open++;
+    b.ws.once('close', () => {
+      if (--open === 0) process.exit(0);
+    });
+    b.ws.close(1000, 'bench done');
+  }
+  if (open === 0) process.exit(0);
+  setTimeout(() => process.exit(0), 2000).unref();
+}
+process.once('SIGTERM', leave);
+setTimeout(leave, 5000);

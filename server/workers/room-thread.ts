@@ -10,8 +10,11 @@ import type { Logger } from '../logger.ts';
 import { RoomError } from '../room.ts';
 import type { RoomSpec } from '../room-manager.ts';
 import { RemoteRoom, type RoomThreadLink } from './remote-room.ts';
-import { forEachSend, type EnteredRoom, type FromWorker, type MemberTraffic, type OpenedRoom, type ToWorker, type WorkerInit } from './worker-protocol.ts';
+import { forEachSend, GC_PAUSE_FIELDS, type EnteredRoom, type FromWorker, type MemberTraffic, type OpenedRoom, type ToWorker, type WorkerInit } from './worker-protocol.ts';
 import { siblingModuleUrl } from '../package-root.ts';
+
+/** GC pauses a RoomThread keeps of its worker. */
+const RECENT_GC_PAUSES = 4096;
 
 /** Members of every thread share one numbering (a member id is never reused in a process). */
 let nextMemberId = 1;
@@ -38,6 +41,8 @@ export class RoomThread implements RoomThreadLink {
   readonly rooms = new Map<string, RemoteRoom>();
   /** The worker's external (WASM and buffer) memory as last reported. */
   externalBytes = 0;
+  /** The worker's recent GC pauses, oldest first (the last RECENT_GC_PAUSES, GC_PAUSE_FIELDS numbers each). */
+  readonly gcPauses: number[] = [];
   private readonly logger: Logger;
   private readonly onDied: (thread: RoomThread, why: string) => void;
   private readonly pending = new Map<number, Pending>();
@@ -217,6 +222,8 @@ export class RoomThread implements RoomThreadLink {
         return;
       case 'status':
         this.externalBytes = msg.externalBytes;
+        this.gcPauses.push(...msg.gcPauses);
+        if (this.gcPauses.length > RECENT_GC_PAUSES * GC_PAUSE_FIELDS) this.gcPauses.splice(0, this.gcPauses.length - RECENT_GC_PAUSES * GC_PAUSE_FIELDS);
         for (const s of msg.rooms) this.rooms.get(s.id)?.reported(s);
         return;
     }

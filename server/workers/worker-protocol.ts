@@ -60,6 +60,9 @@ export interface RoomStatus {
   missedInputTicks: number[];
 }
 
+/** Numbers per GC pause in a status: start (ms since the Unix epoch), duration (ms), kind (perf_hooks' gc kind). */
+export const GC_PAUSE_FIELDS = 3;
+
 /** How often a worker pushes its rooms' status. */
 export const STATUS_INTERVAL_MS = 250;
 
@@ -108,7 +111,7 @@ export type FromWorker =
   | { t: 'out'; batch: ByteBatch; ticks: Array<[room: string, tick: number]> }
   | { t: 'gone'; member: number; closed: boolean; reason: string }
   | { t: 'closed'; room: string; reason: string }
-  | { t: 'status'; rooms: RoomStatus[]; externalBytes: number }
+  | { t: 'status'; rooms: RoomStatus[]; externalBytes: number; gcPauses: number[] }
   /** One JSON log line of the worker's logger; the main thread's logger writes it. */
   | { t: 'log'; line: string };
 

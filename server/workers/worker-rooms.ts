@@ -1,12 +1,14 @@
 // Inside a room worker: the worker's rooms and their members, driven by ToWorker messages. Each member's bytes go into
 // one ByteBatcher flushed once per turn of the worker's loop (after the rooms that were due have ticked), with the
 // ticks they ran; every room's load is pushed every STATUS_INTERVAL_MS. Never touches a socket.
+import { PerformanceObserver } from 'node:perf_hooks';
 import { getHeapStatistics } from 'node:v8';
 import { NetMode } from '../../shared/protocol/predict-messages.ts';
 import type { NetModeRequest } from '../net-mode-policy.ts';
 import type { Clock } from '../../shared/clock.ts';
 import { ErrorCode } from '../../shared/protocol/opcodes.ts';
 import { CatchUpBudget } from '../catch-up-budget.ts';
+import { TickPhases } from '../tick-phases.ts';
 import { DeliveryKind, type MemberSink, type Seat } from '../hosted-room.ts';
 import { enterRoom } from '../local-seat.ts';
 import type { Logger } from '../logger.ts';
@@ -15,7 +17,10 @@ import { openRoom } from '../open-room.ts';
 import { RoomError, type Room } from '../room.ts';
 import type { RoomFactory } from '../room-manager.ts';
 import { OVERLOADED_NICENESS, setThreadNiceness } from './thread-priority.ts';
-import { ByteBatcher, STATUS_INTERVAL_MS, type FromWorker, type RoomStatus, type ToWorker, type WorkerRoomConfig } from './worker-protocol.ts';
+import { ByteBatcher, GC_PAUSE_FIELDS, STATUS_INTERVAL_MS, type FromWorker, type RoomStatus, type ToWorker, type WorkerRoomConfig } from './worker-protocol.ts';
+
+/** Most GC pauses one status carries (a worker collecting more often than this is reported by its tick times). */
+const MAX_GC_PAUSES_PER_STATUS = 256;
 
 /** How a worker posts to the main thread (`transfer`: buffers whose ownership moves with the message). */
 export type PostToMain = (msg: FromWorker, transfer?: ArrayBuffer[]) => void;
@@ -86,10 +91,19 @@ export class WorkerRooms {
   private flushPending = false;
   private readonly statusTimer: ReturnType<typeof setInterval>;
   private readonly catchUp = new CatchUpBudget();
+  private readonly phases = new TickPhases();
   private overloaded = false;
+  /** GC pauses since the last status (GC_PAUSE_FIELDS numbers each); a worker's pauses stall only its own rooms. */
+  private gcPauses: number[] = [];
+  private readonly gcObserver = new PerformanceObserver((list) => {
+    for (const e of list.getEntries()) {
+      if (this.gcPauses.length < MAX_GC_PAUSES_PER_STATUS * GC_PAUSE_FIELDS) this.gcPauses.push(performance.timeOrigin + e.startTime, e.duration, (e as PerformanceEntry & { detail?: { kind?: number } }).detail?.kind ?? 0);
+    }
+  });
 
   constructor(opts: WorkerRoomsOptions) {
     this.opts = opts;
+    this.gcObserver.observe({ entryTypes: ['gc'] });
     this.statusTimer = setInterval(() => this.pushStatus(), STATUS_INTERVAL_MS);
     this.statusTimer.unref();
   }
@@ -191,6 +205,7 @@ export class WorkerRooms {
           maxInputLeadTicks: config.maxInputLeadTicks,
           pauseWhenEmpty: config.pauseWhenEmpty,
           catchUp: this.catchUp,
+          phases: this.phases,
         },
       );
       this.rooms.set(id, room);
@@ -251,7 +266,9 @@ export class WorkerRooms {
     const rooms: RoomStatus[] = [];
     for (const room of this.rooms.values()) rooms.push(this.status(room));
     this.adjustPriority(rooms);
-    this.opts.post({ t: 'status', rooms, externalBytes: getHeapStatistics().external_memory });
+    const gcPauses = this.gcPauses;
+    this.gcPauses = [];
+    this.opts.post({ t: 'status', rooms, externalBytes: getHeapStatistics().external_memory, gcPauses });
   }
 
   // Over budget, the worker's rooms cannot all keep 60 Hz: the worker yields the CPU to the main thread and the other
@@ -296,6 +313,7 @@ export class WorkerRooms {
   /** Closes every room (the worker is being stopped). */
   async closeAll(reason: string): Promise<void> {
     clearInterval(this.statusTimer);
+    this.gcObserver.disconnect();
     await Promise.all([...this.rooms.values()].map((r) => r.close(reason)));
     this.flush();
   }

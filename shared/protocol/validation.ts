@@ -3,7 +3,7 @@
 // throws for any bytes, and error texts describe values without running any of their code (describeValue).
 import { describeValue } from '../sim/describe-value.ts';
 import { checkGameMessageShape } from '../sim/game-messages.ts';
-import { validateInputCommand, type InputCommand } from '../sim/input.ts';
+import { validateInputFields, type InputCommand } from '../sim/input.ts';
 import type { ClientMessage, HelloMessage, InputMessage } from './client-messages.ts';
 import { decodeFrame, toBytes } from './codec.ts';
 import {
@@ -116,7 +116,7 @@ function decodeInput(fields: unknown[]): ClientDecodeResult {
   for (let i = 0; i < list.length; i++) {
     const c = list[i];
     if (!Array.isArray(c) || (c.length !== 5 && c.length !== 6)) return bad(`input.commands[${i}] must be [moveX, moveZ, yaw, pitch, buttons] or [moveX, moveZ, yaw, pitch, buttons, [game…]]`, ErrorCode.BadInput);
-    const v = validateInputCommand({ moveX: c[0], moveZ: c[1], yaw: c[2], pitch: c[3], buttons: c[4], game: c.length === 6 ? c[5] : undefined });
+    const v = validateInputFields(c[0], c[1], c[2], c[3], c[4], c.length === 6 ? c[5] : undefined);
     if (!v.ok) return bad(`input.commands[${i}] (tick ${firstTick + i}): ${v.error}`, ErrorCode.BadInput);
     if (v.clamped) clamped++;
     commands.push(v.command);

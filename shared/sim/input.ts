@@ -55,43 +55,57 @@ function canonicalInt(value: number): number {
   return Math.round(value) + 0;
 }
 
-function intIn(value: unknown, min: number, max: number, field: string): { v: number; clamped: boolean } | string {
+/** Whether the last intIn (or gameValues) call had to clamp: a scratch slot read right after each call. */
+let lastClamped = false;
+
+/** The canonical integer of `value` in [min, max] (clamped; lastClamped says whether it changed), or why it is no number. */
+function intIn(value: unknown, min: number, max: number, field: string): number | string {
   if (typeof value !== 'number') return `${field} must be a number, got ${describeValue(value)}`;
   if (!Number.isFinite(value)) return `${field} must be finite, got ${describeValue(value)}`;
   const r = canonicalInt(value);
-  if (r < min) return { v: min, clamped: true };
-  if (r > max) return { v: max, clamped: true };
-  return { v: r, clamped: r !== value };
+  if (r < min) {
+    lastClamped = true;
+    return min;
+  }
+  if (r > max) {
+    lastClamped = true;
+    return max;
+  }
+  lastClamped = r !== value;
+  return r;
 }
 
-function validate(r: Record<string, unknown>): InputValidation {
-  const moveX = intIn(r.moveX, -MOVE_STEPS, MOVE_STEPS, 'moveX');
+// Runs once per command of every input message: no result object per field (inputs are the server's main allocation).
+function validate(rawMoveX: unknown, rawMoveZ: unknown, rawYaw: unknown, rawPitch: unknown, rawButtons: unknown, rawGame: unknown): InputValidation {
+  const moveX = intIn(rawMoveX, -MOVE_STEPS, MOVE_STEPS, 'moveX');
   if (typeof moveX === 'string') return { ok: false, error: moveX };
-  const moveZ = intIn(r.moveZ, -MOVE_STEPS, MOVE_STEPS, 'moveZ');
+  let clamped = lastClamped;
+  const moveZ = intIn(rawMoveZ, -MOVE_STEPS, MOVE_STEPS, 'moveZ');
   if (typeof moveZ === 'string') return { ok: false, error: moveZ };
-  const pitch = intIn(r.pitch, -PITCH_STEPS, PITCH_STEPS, 'pitch');
+  clamped ||= lastClamped;
+  const pitch = intIn(rawPitch, -PITCH_STEPS, PITCH_STEPS, 'pitch');
   if (typeof pitch === 'string') return { ok: false, error: pitch };
-  const rawYaw = r.yaw;
+  clamped ||= lastClamped;
   if (typeof rawYaw !== 'number' || !Number.isFinite(rawYaw)) return { ok: false, error: `yaw must be a finite number, got ${describeValue(rawYaw)}` };
   // Yaw wraps into [0, YAW_STEPS) (the remainder of a huge yaw is exact).
   const yaw = ((canonicalInt(rawYaw) % YAW_STEPS) + YAW_STEPS) % YAW_STEPS;
-  const rawButtons = r.buttons;
   if (typeof rawButtons !== 'number' || !Number.isInteger(rawButtons) || rawButtons < 0) {
     return { ok: false, error: `buttons must be a non-negative integer bit set, got ${describeValue(rawButtons)}` };
   }
   const buttons = rawButtons & BUTTON_MASK;
-  const game = gameValues(r.game);
+  const game = gameValues(rawGame);
   if (typeof game === 'string') return { ok: false, error: game };
-  const clamped = moveX.clamped || moveZ.clamped || pitch.clamped || yaw !== rawYaw || buttons !== rawButtons || game.clamped;
-  const command: InputCommand = { moveX: moveX.v, moveZ: moveZ.v, yaw, pitch: pitch.v, buttons };
-  if (game.values.length > 0) command.game = game.values;
+  clamped ||= (game !== null && lastClamped) || yaw !== rawYaw || buttons !== rawButtons;
+  const command: InputCommand = { moveX, moveZ, yaw, pitch, buttons };
+  if (game !== null && game.length > 0) command.game = game;
   return { ok: true, command, clamped };
 }
 
 // Game values: an array of at most MAX_COMMAND_GAME_VALUES finite numbers, each made a canonical integer within
-// ±MAX_COMMAND_GAME_ABS (the scenario's own ranges are applied by fitGameInput, which knows them).
-function gameValues(raw: unknown): { values: number[]; clamped: boolean } | string {
-  if (raw === undefined) return { values: [], clamped: false };
+// ±MAX_COMMAND_GAME_ABS (the scenario's own ranges are applied by fitGameInput, which knows them). Null when absent;
+// lastClamped says whether any value was clamped.
+function gameValues(raw: unknown): number[] | null | string {
+  if (raw === undefined) return null;
   if (!Array.isArray(raw)) return `game must be an array of numbers, got ${describeValue(raw)}`;
   if (raw.length > MAX_COMMAND_GAME_VALUES) return `game must have at most ${MAX_COMMAND_GAME_VALUES} values, got ${raw.length}`;
   const values: number[] = [];
@@ -99,10 +113,11 @@ function gameValues(raw: unknown): { values: number[]; clamped: boolean } | stri
   for (let i = 0; i < raw.length; i++) {
     const v = intIn(raw[i], -MAX_COMMAND_GAME_ABS, MAX_COMMAND_GAME_ABS, `game[${i}]`);
     if (typeof v === 'string') return v;
-    clamped ||= v.clamped;
-    values.push(v.v);
+    clamped ||= lastClamped;
+    values.push(v);
   }
-  return { values, clamped };
+  lastClamped = clamped;
+  return values;
 }
 
 /**
@@ -114,7 +129,17 @@ function gameValues(raw: unknown): { values: number[]; clamped: boolean } | stri
 export function validateInputCommand(raw: unknown): InputValidation {
   try {
     if (raw === null || typeof raw !== 'object' || Array.isArray(raw)) return { ok: false, error: 'input must be an object' };
-    return validate(raw as Record<string, unknown>);
+    const r = raw as Record<string, unknown>;
+    return validate(r.moveX, r.moveZ, r.yaw, r.pitch, r.buttons, r.game);
+  } catch {
+    return { ok: false, error: 'input could not be read (a field threw when read)' };
+  }
+}
+
+/** validateInputCommand for a command's fields already read from a decoded message (no object to build first). */
+export function validateInputFields(moveX: unknown, moveZ: unknown, yaw: unknown, pitch: unknown, buttons: unknown, game?: unknown): InputValidation {
+  try {
+    return validate(moveX, moveZ, yaw, pitch, buttons, game);
   } catch {
     return { ok: false, error: 'input could not be read (a field threw when read)' };
   }

@@ -49,7 +49,7 @@ describe('TickClock', () => {
     expect(tc.slowdowns).toBe(0);
   });
 
-  it('gives up time after the catch-up limit instead of spiralling, and reports it', () => {
+  it('runs one tick instead of a burst when further behind than the catch-up limit, gives up the rest, and reports it', () => {
     const clock = new ManualClock();
     const reports: SlowdownReport[] = [];
     let count = 0;
@@ -58,19 +58,51 @@ describe('TickClock', () => {
     clock.advance(0);
     tc.stop();
     clock.advance(1000); // a 1 s stall: 60 ticks overdue
-    expect(tc.poll()).toBe(4);
-    expect(count).toBe(5);
+    expect(tc.poll()).toBe(1);
+    expect(count).toBe(2);
     expect(reports).toHaveLength(1);
-    expect(reports[0].skippedTicks).toBe(56);
-    expect(reports[0].lostMs).toBeCloseTo(56 * (1000 / 60), 6);
+    expect(reports[0].skippedTicks).toBe(59);
+    expect(reports[0].lostMs).toBeCloseTo(59 * (1000 / 60), 6);
     // Next tick is due one period later, not immediately: the lost time is not owed any more.
     expect(tc.poll()).toBe(0);
     expect(tc.nextDueMs() - clock.nowMs()).toBeCloseTo(1000 / 60, 6);
     // Restarting re-anchors on now: the next tick runs at once, then 60 per second, with nothing owed.
     tc.start();
     clock.advance(1000);
-    expect(count).toBe(66);
+    expect(count).toBe(63);
     expect(tc.slowdowns).toBe(1);
+  });
+
+  it('still catches up a stall within the limit, so a brief pause costs no ticks', () => {
+    const clock = new ManualClock();
+    let count = 0;
+    const tc = new TickClock({ clock, maxCatchUpTicks: 4, onTick: () => count++ });
+    tc.poll();
+    clock.advance(4 * (1000 / 60));
+    expect(tc.poll()).toBe(4);
+    expect(count).toBe(5);
+    expect(tc.slowdowns).toBe(0);
+  });
+
+  it('ticks on its phase of the period: the first tick waits for it and a slowdown returns to it', () => {
+    const period = 1000 / 60;
+    const clock = new ManualClock(1000);
+    const starts: number[] = [];
+    const tc = new TickClock({ clock, phaseMs: 5, onTick: () => starts.push(clock.nowMs()) });
+    tc.start();
+    clock.advance(period * 3);
+    // 1000 ms is 60 whole periods: the phase-5 slots are 1005, 1021.67, 1038.33 …
+    expect(starts.length).toBe(3);
+    starts.forEach((t, i) => expect(t).toBeCloseTo(1005 + i * period, 6));
+    tc.stop();
+    clock.advance(500); // far behind: one tick now, then back on the phase at least half a period later
+    expect(tc.poll()).toBe(1);
+    const due = tc.nextDueMs();
+    expect(due - clock.nowMs()).toBeGreaterThanOrEqual(period / 2 - 1e-6);
+    expect(due - clock.nowMs()).toBeLessThan(period * 1.5);
+    const periods = (due - 5) / period;
+    expect(Math.abs(periods - Math.round(periods))).toBeLessThan(1e-6);
+    expect(() => new TickClock({ clock, phaseMs: period, onTick: () => {} })).toThrow(/phaseMs/);
   });
 
   it('slows down steadily when every tick takes two periods', () => {

@@ -1,7 +1,7 @@
 // Tests for the bench's pass rules and derived figures: client and room windows, GC pause per tick, the per-client
 // cost line, and the input-latency distribution that keeps unapplied (late) inputs in.
 import { describe, expect, it } from 'vitest';
-import { clientCost, gcPauseInSpans, gcPausePerTick, judgeClientWindow, judgeRoomsWindow, judgeSwarmProof, ladderResult, latencyDistribution, maxGap, nextLadderCount, TICK_BUDGET_MS } from '../../../bench/lib/rules.ts';
+import { clientCost, gcPauseInSpans, gcPausePerTick, judgeClientWindow, judgeRoomsWindow, judgeSwarmProof, ladderResult, latencyDistribution, maxClientGapMs, maxGap, nextLadderCount, TICK_BUDGET_MS } from '../../../bench/lib/rules.ts';
 
 const goodWindow = { seconds: 8, ticks: 480, tickP99Ms: 12, snapshotsSent: 30 * 8 * 100, snapshotsSkipped: 0, droppedClients: 0 };
 
@@ -30,18 +30,35 @@ describe('rules', () => {
     expect(none.reasons).toHaveLength(3);
   });
 
+  const rule = { botsPerRoom: 4, snapshotIntervalTicks: 2 };
+  const room = { id: 'a', ticks: 300, maxGapMs: 2 * TICK_BUDGET_MS, tickP99Ms: 3, clients: 4, snapshots: 600, clientGapMs: 60, clientTickStep: 2 };
+
   it('passes a room count only when every room keeps its tick starts at most two ticks apart', () => {
-    const ok = { id: 'a', ticks: 300, maxGapMs: 2 * TICK_BUDGET_MS };
-    expect(judgeRoomsWindow(5, [ok, { ...ok, id: 'b' }]).pass).toBe(true);
-    const v = judgeRoomsWindow(5, [ok, { id: 'b', ticks: 300, maxGapMs: 40 }]);
+    expect(judgeRoomsWindow(5, [room, { ...room, id: 'b' }], rule)).toEqual({ pass: true, reasons: [] });
+    const v = judgeRoomsWindow(5, [room, { ...room, id: 'b', maxGapMs: 40 }], rule);
     expect(v.pass).toBe(false);
     expect(v.reasons).toEqual(['1 room(s) with a tick gap > 2 ticks (worst 40.0 ms)']);
   });
 
   it('fails a room count where a room fell below 60 ticks/s or ran fewer than two ticks', () => {
-    expect(judgeRoomsWindow(5, [{ id: 'a', ticks: 250, maxGapMs: 20 }]).reasons).toEqual(['1 room(s) below 60 ticks/s']);
-    expect(judgeRoomsWindow(5, [{ id: 'a', ticks: 1, maxGapMs: null }]).pass).toBe(false);
-    expect(judgeRoomsWindow(5, []).pass).toBe(false);
+    expect(judgeRoomsWindow(5, [{ ...room, ticks: 250, maxGapMs: 20 }], rule).reasons).toEqual(['1 room(s) below 60 ticks/s']);
+    expect(judgeRoomsWindow(5, [{ ...room, ticks: 1, maxGapMs: null }], rule).pass).toBe(false);
+    expect(judgeRoomsWindow(5, [], rule).pass).toBe(false);
+  });
+
+  it('fails a room whose tick p99 reaches one tick budget although its ticks kept their spacing', () => {
+    expect(judgeRoomsWindow(5, [{ ...room, tickP99Ms: TICK_BUDGET_MS }], rule).reasons).toEqual(['1 room(s) with tick p99 ≥ 16.7 ms (worst 16.7 ms)']);
+  });
+
+  it('fails a room whose clients waited more than the snapshot spacing plus two ticks, or missed a snapshot', () => {
+    expect(maxClientGapMs(2)).toBeCloseTo(66.67, 2);
+    expect(judgeRoomsWindow(5, [{ ...room, clientGapMs: 70 }], rule).reasons).toEqual(['1 room(s) whose clients waited > 66.7 ms for a snapshot (worst 70.0 ms)']);
+    expect(judgeRoomsWindow(5, [{ ...room, clientTickStep: 4 }], rule).reasons).toEqual(['1 room(s) whose clients missed a snapshot']);
+    expect(judgeRoomsWindow(5, [{ ...room, clientGapMs: null, clientTickStep: null }], rule).pass).toBe(false);
+  });
+
+  it('fails a room holding players left over from an earlier step', () => {
+    expect(judgeRoomsWindow(5, [{ ...room, clients: 8 }], rule).reasons).toEqual(['1 room(s) without exactly 4 players']);
   });
 
   it('finds the longest gap between ascending times', () => {

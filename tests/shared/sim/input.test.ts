@@ -2,7 +2,7 @@
 // −0) and stays the same when validated again; nothing a value holds (getters, Proxies, conversion keys) makes
 // validation throw or leak into an error text.
 import { describe, expect, it } from 'vitest';
-import { BUTTON_MASK, MOVE_STEPS, PITCH_STEPS, quantizeInput, validateInputCommand, YAW_STEPS, type InputCommand } from '../../../shared/sim/input.ts';
+import { BUTTON_MASK, MOVE_STEPS, PITCH_STEPS, quantizeInput, validateInputCommand, validateInputFields, YAW_STEPS, type InputCommand } from '../../../shared/sim/input.ts';
 import { Prng } from '../../../shared/sim/prng.ts';
 import { EDGE_NUMBERS } from '../../helpers/hostile-frames.ts';
 import { hostileValue } from '../../helpers/hostile-values.ts';
@@ -93,5 +93,37 @@ describe('quantizeInput', () => {
       if (why) problems.push(why);
     }
     expect(problems.slice(0, 5)).toEqual([]);
+  });
+});
+
+describe('validateInputFields', () => {
+  it('gives what validateInputCommand gives for the same fields, clamp flag and game values included, whatever came before', () => {
+    const rng = new Prng(11);
+    const pick = (): unknown => {
+      const r = rng.int(0, 8 - 1);
+      if (r < 4) return EDGE_NUMBERS[rng.int(0, EDGE_NUMBERS.length - 1)];
+      if (r < 6) return rng.int(0, 4000 - 1) - 2000;
+      return r === 6 ? hostileValue(rng) : (rng.int(0, 200 - 1) - 100) / 7;
+    };
+    for (let i = 0; i < 5000; i++) {
+      const game = rng.int(0, 3 - 1) === 0 ? undefined : Array.from({ length: rng.int(0, 4 - 1) }, () => (rng.int(0, 2 - 1) === 0 ? rng.int(0, 3_000_000 - 1) - 1_500_000 : pick()));
+      const fields = [pick(), pick(), pick(), pick(), rng.int(0, 2 - 1) === 0 ? rng.int(0, 1 << 20 - 1) : pick(), game] as const;
+      const viaObject = validateInputCommand({ moveX: fields[0], moveZ: fields[1], yaw: fields[2], pitch: fields[3], buttons: fields[4], game: fields[5] });
+      expect(validateInputFields(...fields)).toEqual(viaObject);
+    }
+  });
+
+  it('reports a clamp only for the command it validates, never one left over from the call before', () => {
+    const clampedOf = (...f: Parameters<typeof validateInputFields>): boolean | null => {
+      const v = validateInputFields(...f);
+      return v.ok ? v.clamped : null;
+    };
+    expect(clampedOf(0, 0, 0, 0, 0, [5_000_000])).toBe(true);
+    expect(clampedOf(0, 0, 0, 0, 0)).toBe(false);
+    expect(clampedOf(0, 0, 0, PITCH_STEPS + 5, 0)).toBe(true);
+    expect(clampedOf(0, 0, 0, 0, 0, [1, -2])).toBe(false);
+    expect(clampedOf(MOVE_STEPS * 3, 0, 0, 0, 0, [])).toBe(true);
+    expect(clampedOf(1, 2, 3, 4, 5, [])).toBe(false);
+    expect(validateInputFields(0, 0, 0, 0, 0, [7])).toEqual({ ok: true, command: { moveX: 0, moveZ: 0, yaw: 0, pitch: 0, buttons: 0, game: [7] }, clamped: false });
   });
 });
