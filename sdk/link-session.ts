@@ -206,6 +206,7 @@ export class LinkSession {
   /** Sends a game message now (after the welcome). */
   sendGameMessage(name: string, payload: number[]): void {
     this.send({ type: 'game', name, payload });
+    this.predictSession?.onOwnMessage(name, payload);
   }
 
   /** Sets the command for ticks from now on. */
@@ -342,6 +343,7 @@ export class LinkSession {
         send: (msg) => this.send(msg),
         nowMs: () => this.o.clock.nowMs(),
         events: (events) => this.h.events(events),
+        gameState: (values) => this.h.gameState(values),
         protocolError: (message) => this.h.protocolError(message),
         fellBack: (reason) => this.h.protocolError(`prediction stopped, back to snapshots: ${reason}`),
       });

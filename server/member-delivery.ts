@@ -53,6 +53,8 @@ export class DeliveringMember implements RoomMember {
       this.delivery = NetMode.Snapshot;
       this.checkpoint = null;
       this.encoder = new SnapshotEncoder(this.fanOut.format);
+      // The client's game state came from its own simulation: the first snapshot carries the whole state again.
+      this.heldStateVersion = -1;
     }
     return true;
   }

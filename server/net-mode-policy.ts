@@ -1,6 +1,8 @@
 // Which net mode a room gets: predict when the client's cost of rolling back fits a frame, snapshot otherwise. The
 // cost is an estimate per built-in scenario (its measured tick time at default parameters, scaled by the parameter
-// that sets how many bodies move), so the choice is the same on every server and known before anyone joins.
+// that sets how many bodies move) or the scenario's own `tickCostMs`, so the choice is the same on every server and
+// known before anyone joins. Scenarios using the game API predict like any other (records carry game input and
+// messages).
 import { NetMode } from '../shared/protocol/predict-messages.ts';
 
 /** What a room is asked for: a mode, or 'auto' (predict when affordable). */
@@ -45,21 +47,19 @@ export interface NetModeDecision {
 }
 
 /**
- * Decides a room's net mode from the request, the scenario and its resolved parameters. A scenario that uses the game
- * API (game input, state or messages) is served snapshots: predict mode's records and checkpoints do not carry it.
+ * Decides a room's net mode from the request, the scenario and its resolved parameters. `ownTickCostMs`: the
+ * scenario's own estimate at default parameters (ScenarioDefinition.tickCostMs), used when it is not a built-in.
  */
-export function decideNetMode(request: NetModeRequest, scenario: string, params: Readonly<Record<string, number>>, usesGameApi = false): NetModeDecision {
-  if (usesGameApi && request !== NetMode.Snapshot) {
-    return { mode: NetMode.Snapshot, affordableRollbackTicks: null, note: `snapshot mode: scenario ${scenario} uses the game API (game input, state or messages), which predict mode does not carry` };
-  }
-  const model = Object.hasOwn(COST, scenario) ? COST[scenario] : undefined;
+export function decideNetMode(request: NetModeRequest, scenario: string, params: Readonly<Record<string, number>>, ownTickCostMs?: number): NetModeDecision {
+  const builtIn = Object.hasOwn(COST, scenario) ? COST[scenario] : undefined;
+  const model = builtIn ?? (ownTickCostMs !== undefined && ownTickCostMs > 0 ? { msPerTick: ownTickCostMs } : undefined);
   const estimateMs = model ? model.msPerTick * Math.max(model.load?.(params) ?? 1, 0.01) : null;
   const affordable = estimateMs === null ? null : Math.floor(FRAME_BUDGET_MS / estimateMs);
   if (request === NetMode.Snapshot) return { mode: NetMode.Snapshot, affordableRollbackTicks: affordable, note: null };
   if (affordable === null) {
     // No estimate (a scenario outside the built-in set): predict only when asked for by name.
     if (request === NetMode.Predict) return { mode: NetMode.Predict, affordableRollbackTicks: null, note: null };
-    return { mode: NetMode.Snapshot, affordableRollbackTicks: null, note: `no cost estimate for scenario ${scenario}: snapshot mode` };
+    return { mode: NetMode.Snapshot, affordableRollbackTicks: null, note: `no cost estimate for scenario ${scenario} (its definition gives no tickCostMs): snapshot mode` };
   }
   if (affordable < EXPECTED_ROLLBACK_TICKS) {
     return {

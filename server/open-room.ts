@@ -51,9 +51,7 @@ export async function openRoom(spec: RoomSpec, opts: OpenRoomOptions): Promise<R
 export function roomAround(spec: RoomSpec, built: RoomSimulationBuild, recorder: RoomRecorder | null, opts: Omit<OpenRoomOptions, 'factory'>, predictInputs?: readonly PlayerInputState[]): Room {
   const { id, scenario, seed } = spec;
   const netModeRequested = spec.netMode ?? 'auto';
-  const sim = built.sim;
-  const usesGameApi = (sim.gameInputFields?.length ?? 0) + (sim.gameStateFields?.length ?? 0) + (sim.gameMessageKinds?.length ?? 0) > 0;
-  const decision = decideNetMode(netModeRequested, scenario, built.params, usesGameApi);
+  const decision = decideNetMode(netModeRequested, scenario, built.params, built.tickCostMs);
   return new Room(built.sim, {
     id,
     netMode: decision.mode,

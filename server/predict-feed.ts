@@ -2,6 +2,7 @@
 // members (with the state hash on hash ticks), and checkpoint messages for joining and resyncing members.
 import { carriesHash, encodeServerMessage, RecordDeltaCoder, type CheckpointMessage } from '../shared/protocol/index.ts';
 import type { PlayerInputState } from '../shared/protocol/record-delta.ts';
+import type { RecordGameLayout } from '../shared/protocol/record-game-bits.ts';
 import type { TickInputRecord } from '../shared/sim/types.ts';
 
 /** What the feed reads from the room's simulation. */
@@ -18,9 +19,12 @@ export class PredictFeed {
   private readonly seed: number | string;
   private cachedCheckpoint: { tick: number; message: Uint8Array; sizeBytes: number } | null = null;
 
-  /** `inputs`: the players already in the game and their last commands (a room resumed mid-session); default none. */
-  constructor(sim: FeedSimulation, seed: number | string, inputs: readonly PlayerInputState[] = []) {
-    this.coder = new RecordDeltaCoder(inputs);
+  /**
+   * `inputs`: the players already in the game and their last commands (a room resumed mid-session); default none.
+   * `layout`: the scenario's game input fields and message kinds, which the records carry.
+   */
+  constructor(sim: FeedSimulation, seed: number | string, inputs: readonly PlayerInputState[] = [], layout?: RecordGameLayout) {
+    this.coder = new RecordDeltaCoder(inputs, layout);
     this.sim = sim;
     this.seed = seed;
   }

@@ -112,7 +112,7 @@ export function createRoomFactory(opts: RoomFactoryOptions): RecordingFactory & 
       }
       const sim = await Simulation.create({ scenario: def, params, seed, worldOptions: { isolatedModule: isolated } });
       if (!isolated) live.add(sim);
-      return { sim, maxBodies: sim.world.maxBodies, maxPlayers: sim.maxPlayers, params: { ...sim.params }, description: def.description, bounds: def.bounds };
+      return { sim, maxBodies: sim.world.maxBodies, maxPlayers: sim.maxPlayers, params: { ...sim.params }, description: def.description, bounds: def.bounds, tickCostMs: def.tickCostMs };
     },
     async createRecorder(room): Promise<RoomRecorder | null> {
       if (!opts.recordDir) return null;

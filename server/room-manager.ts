@@ -35,6 +35,8 @@ export interface RoomSimulationBuild {
   maxPlayers?: number;
   /** The parameters after defaults were filled in. */
   params: Readonly<Record<string, number>>;
+  /** The scenario's own tick cost estimate at default parameters (ScenarioDefinition.tickCostMs), if it gives one. */
+  tickCostMs?: number;
 }
 
 /** Builds simulations and recorders for rooms (the server wires Simulation.create and the log writer in here). */

@@ -84,7 +84,8 @@ export class Room implements HostedRoom {
     if (this.netMode === NetMode.Predict) {
       const save = sim.saveCheckpointBytes?.bind(sim);
       if (!save) throw new Error(`room ${opts.id}: predict mode needs a simulation with saveCheckpointBytes()`);
-      this.predictFeed = new PredictFeed({ get tick() { return sim.tick; }, stateHash: () => sim.stateHash(), saveCheckpointBytes: save }, opts.seed, opts.predictInputs);
+      const layout = { fields: sim.gameInputFields ?? [], kinds: sim.gameMessageKinds ?? [] };
+      this.predictFeed = new PredictFeed({ get tick() { return sim.tick; }, stateHash: () => sim.stateHash(), saveCheckpointBytes: save }, opts.seed, opts.predictInputs, layout);
     }
     this.snapshots = new SnapshotFanOut({
       bounds: this.bounds,

@@ -1,10 +1,12 @@
 // One connection's predicted play: asks the server for predict mode, builds the local simulation from the checkpoint
 // (the app's createSimulation), feeds confirmed records to the Predictor, advances it with the own commands the input
-// sender fixed, smooths corrections for renderers, resyncs on a hash mismatch, measures rollback depth and re-sim
-// time every frame and falls back to snapshots when the frame budget stays blown.
+// sender fixed (and the own game messages at once), smooths corrections for renderers, hands on the game state of
+// confirmed ticks, resyncs on a hash mismatch, measures rollback depth and re-sim time every frame and falls back to
+// snapshots when the frame budget stays blown.
 import type { ClientMessage } from '../../shared/protocol/client-messages.ts';
 import type { CheckpointMessage, RecordMessage } from '../../shared/protocol/predict-messages.ts';
 import type { WelcomeMessage } from '../../shared/protocol/server-messages.ts';
+import type { GameStateValue } from '../../shared/sim/game-state.ts';
 import type { InputCommand } from '../../shared/sim/input.ts';
 import type { BodyDescriptor, CharacterState, SimEvent } from '../../shared/sim/types.ts';
 import { Predictor, type PredictSimulation } from './predictor.ts';
@@ -86,6 +88,8 @@ export interface PredictLink {
   nowMs(): number;
   /** Confirmed events, in tick order. */
   events(events: SimEvent[]): void;
+  /** The game state of the newest confirmed tick, in the welcome's field order (when it changed). */
+  gameState(values: GameStateValue[]): void;
   /** Something the server sent could not be used. */
   protocolError(message: string): void;
   /** The session fell back to snapshots (the link keeps interpolating them). */
@@ -172,6 +176,14 @@ export class PredictSession {
       this.link.protocolError(`record not applied: ${(error as Error).message}`);
       this.resync();
     }
+  }
+
+  /**
+   * An own game message was just sent: the local simulation applies it on its next predicted tick. Sent while no
+   * predictor runs (starting, resyncing), it is only the server's: it shows in the next checkpoint's state.
+   */
+  onOwnMessage(name: string, payload: readonly number[]): void {
+    if (this.active) this.predictor?.sendMessage(name, payload);
   }
 
   /** One frame: apply confirmed records, predict to `targetTick` (exclusive), measure. */
@@ -278,8 +290,11 @@ export class PredictSession {
       sim.restoreCheckpointBytes(m.bytes);
       this.predictor = new Predictor(sim, m, this.welcome.playerId, {
         confirmedEvents: (events) => this.link.events(events),
+        confirmedState: (values) => this.link.gameState(values),
         desync: (tick, ours, theirs) => this.onDesync(tick, ours, theirs),
       }, this.opts.maxAheadTicks ?? 30, this.opts.checkpointEveryTicks ?? 4);
+      const state = this.predictor.startState();
+      if (state !== null) this.link.gameState(state);
     } catch (error) {
       this.fallBack(`the checkpoint could not be restored: ${(error as Error).message}`);
       return;

@@ -1,15 +1,21 @@
 // The rollback core of a predicting client: a local Simulation started from the server's checkpoint runs ahead to the
 // present with the player's own commands and everyone else's last confirmed command; each confirmed record is
 // checked against what was predicted for its tick, and a difference rolls back to that tick and re-simulates to the
-// present. Confirmed ticks yield the authoritative events; every hash the server sends is compared. No timers, no
-// sockets: predict-session.ts drives it.
+// present. The own game messages are applied on the next predicted tick (own-messages.ts). Confirmed ticks yield the
+// authoritative events and game state; every hash the server sends is compared. No timers, no sockets:
+// predict-session.ts drives it.
 import type { PlayerInputState } from '../../shared/protocol/record-delta.ts';
 import { RecordDeltaCoder } from '../../shared/protocol/record-delta.ts';
+import { canonicalGame } from '../../shared/protocol/record-game-bits.ts';
+import type { GameInputField } from '../../shared/sim/game-input.ts';
+import type { GameMessage, GameMessageKind } from '../../shared/sim/game-messages.ts';
+import type { GameStateValue } from '../../shared/sim/game-state.ts';
 import { carriesHash, type RecordMessage } from '../../shared/protocol/predict-messages.ts';
 import { sameInput, type InputCommand } from '../../shared/sim/input.ts';
 import type { Checkpoint } from '../../shared/sim/checkpoint.ts';
 import { RollbackWindow } from '../../shared/sim/rollback-window.ts';
 import type { BodyDescriptor, CharacterState, PlayerCommand, SimEvent, TickInputRecord } from '../../shared/sim/types.ts';
+import { OwnMessages } from './own-messages.ts';
 
 /** The part of Simulation a predicting client drives (shared/sim/simulation.ts satisfies it). */
 export interface PredictSimulation {
@@ -25,6 +31,12 @@ export interface PredictSimulation {
   bodyDescriptor(id: number): BodyDescriptor | undefined;
   descriptors(): BodyDescriptor[];
   destroy(): void;
+  /** The scenario's game input fields, message kinds and state fields (absent or empty: it uses no game API). */
+  readonly gameInputFields?: readonly GameInputField[];
+  readonly gameMessageKinds?: readonly GameMessageKind[];
+  readonly gameStateFields?: readonly unknown[];
+  /** The game state now, in field order. */
+  gameStateValues?(): GameStateValue[];
 }
 
 /** What one predicted tick used and produced, until the tick is confirmed. */
@@ -32,6 +44,8 @@ interface Slot {
   record: TickInputRecord;
   events: SimEvent[];
   hash: string | null;
+  /** The game state after the tick (null: the scenario declares none). */
+  state: GameStateValue[] | null;
 }
 
 /** What advance() did this time. */
@@ -48,12 +62,25 @@ export interface AdvanceReport {
 export interface PredictorHandlers {
   /** Events of ticks just confirmed, in tick order (authoritative: the server's simulation produced the same). */
   confirmedEvents(events: SimEvent[]): void;
+  /** The game state after a confirmed tick, when it differs from the last one given (and once at the start). */
+  confirmedState?(values: GameStateValue[]): void;
   /** The server's hash of a confirmed tick differs from ours. */
   desync(tick: number, ours: string, theirs: string): void;
 }
 
+function sameMessages(a: readonly GameMessage[] | undefined, b: readonly GameMessage[] | undefined): boolean {
+  const x = a ?? [];
+  const y = b ?? [];
+  return x.length === y.length && x.every((m, i) => m.playerId === y[i].playerId && m.name === y[i].name && m.payload.length === y[i].payload.length && m.payload.every((v, j) => v === y[i].payload[j]));
+}
+
+function sameState(a: readonly GameStateValue[], b: readonly GameStateValue[]): boolean {
+  return a.length === b.length && a.every((v, i) => v === b[i]);
+}
+
 function sameRecord(predicted: TickInputRecord, confirmed: TickInputRecord): boolean {
   if (confirmed.leaves.length > 0 || confirmed.joins.length > 0 || predicted.commands.length !== confirmed.commands.length) return false;
+  if (!sameMessages(predicted.messages, confirmed.messages)) return false;
   for (let i = 0; i < confirmed.commands.length; i++) {
     const a = predicted.commands[i];
     const b = confirmed.commands[i];
@@ -83,6 +110,10 @@ export class Predictor {
   private verified = 0;
   /** The own command each unconfirmed tick was predicted with (re-simulation reuses it). */
   private readonly ownHistory = new Map<number, InputCommand>();
+  private readonly ownMessages: OwnMessages;
+  private readonly gameFields: readonly GameInputField[];
+  private readonly hasState: boolean;
+  private lastState: GameStateValue[] | null = null;
 
   /**
    * `checkpointEveryTicks`: save a fast checkpoint every this many ticks (1: every tick). In big scenes saving costs
@@ -94,10 +125,30 @@ export class Predictor {
     this.handlers = handlers;
     this.maxAheadTicks = maxAheadTicks;
     this.window = new RollbackWindow(sim, maxAheadTicks + checkpointEveryTicks + 2, checkpointEveryTicks);
-    this.coder = new RecordDeltaCoder(checkpoint.inputs);
+    this.gameFields = sim.gameInputFields ?? [];
+    this.coder = new RecordDeltaCoder(checkpoint.inputs, { fields: this.gameFields, kinds: sim.gameMessageKinds ?? [] });
+    this.ownMessages = new OwnMessages(playerId, 2 * maxAheadTicks);
+    this.hasState = (sim.gameStateFields?.length ?? 0) > 0 && typeof sim.gameStateValues === 'function';
     this.nextRecordTick = checkpoint.tick;
     this.confirmed = checkpoint.tick;
     if (sim.tick !== checkpoint.tick) throw new Error(`Predictor: the simulation is at tick ${sim.tick}, the checkpoint at ${checkpoint.tick}`);
+  }
+
+  /** The game state at the checkpoint (null: the scenario declares none); later states come through confirmedState. */
+  startState(): GameStateValue[] | null {
+    if (!this.hasState) return null;
+    this.lastState = this.sim.gameStateValues!();
+    return this.lastState;
+  }
+
+  /** An own game message just sent: applied on the next predicted tick, until the server's record says otherwise. */
+  sendMessage(name: string, payload: readonly number[]): void {
+    this.ownMessages.add(name, payload, this.sim.tick);
+  }
+
+  /** Own game messages sent and not yet seen in a confirmed record. */
+  get pendingMessages(): number {
+    return this.ownMessages.size;
   }
 
   /** The oldest unconfirmed tick: ticks before it are the server's. */
@@ -188,6 +239,7 @@ export class Predictor {
     this.slots.clear();
     this.confirmedRecords.clear();
     this.ownHistory.clear();
+    this.ownMessages.clear();
     this.queue.length = 0;
   }
 
@@ -202,21 +254,35 @@ export class Predictor {
           this.ownHistory.set(tick, input);
         }
       } else input = this.coder.inputOf(id);
-      if (input) commands.push({ playerId: id, input: { ...input } });
+      if (input) commands.push({ playerId: id, input: this.recordForm(input) });
     }
-    return { tick, leaves: [], joins: [], commands };
+    const messages = this.sim.playerIds().includes(this.playerId) ? this.ownMessages.forTick(tick) : [];
+    return messages.length > 0 ? { tick, leaves: [], joins: [], commands, messages } : { tick, leaves: [], joins: [], commands };
+  }
+
+  /** A command as the decoded records give it: game values exactly when the scenario declares fields. */
+  private recordForm(c: InputCommand): InputCommand {
+    const game = canonicalGame(c.game, this.gameFields);
+    const { game: _dropped, ...plain } = c;
+    return game === undefined ? plain : { ...plain, game };
   }
 
   private stepSlot(record: TickInputRecord): void {
     const events = this.window.step(record);
-    this.slots.set(record.tick, { record, events, hash: carriesHash(record.tick) ? this.sim.stateHash() : null });
+    const state = this.hasState ? this.sim.gameStateValues!() : null;
+    this.slots.set(record.tick, { record, events, hash: carriesHash(record.tick) ? this.sim.stateHash() : null, state });
   }
 
   private confirm(tick: number, slot: Slot, theirs: string | null): void {
     this.slots.delete(tick);
     this.confirmedRecords.set(tick, slot.record);
     this.confirmed = tick + 1;
+    this.ownMessages.confirmed(tick, slot.record.messages);
     if (slot.events.length > 0) this.handlers.confirmedEvents(slot.events);
+    if (slot.state !== null && (this.lastState === null || !sameState(this.lastState, slot.state))) {
+      this.lastState = slot.state;
+      this.handlers.confirmedState?.(slot.state);
+    }
     if (theirs === null || slot.hash === null) return;
     if (slot.hash === theirs) this.verified++;
     else this.handlers.desync(tick, slot.hash, theirs);

@@ -162,7 +162,7 @@ export function encodeServerMessage(m: ServerMessage): Uint8Array {
     case 'bye':
       return packr.pack(m.url === undefined ? [ServerOpcode.Bye, m.reason, m.message] : [ServerOpcode.Bye, m.reason, m.message, m.url]);
     case 'checkpoint':
-      return packr.pack([ServerOpcode.Checkpoint, m.tick, m.seed, m.bytes, m.inputs.map((p) => [p.playerId, p.input.moveX, p.input.moveZ, p.input.yaw, p.input.pitch, p.input.buttons, p.yawStep])]);
+      return packr.pack([ServerOpcode.Checkpoint, m.tick, m.seed, m.bytes, m.inputs.map((p) => { const row: unknown[] = [p.playerId, p.input.moveX, p.input.moveZ, p.input.yaw, p.input.pitch, p.input.buttons, p.yawStep]; if ((p.input.game?.length ?? 0) > 0) row.push([...p.input.game!]); return row; })]);
     case 'record': {
       // Joins and the hash only when present: most records are [23, tickLow, bits].
       const fields: unknown[] = [ServerOpcode.Record, m.tickLow, m.bits];

@@ -10,8 +10,10 @@
  * 5: the pong's room pace (roomTicksPerSecond, roomSlow).
  * 6: the bye reason `room-moved` (and error code) with the hosting server's URL as the bye's fourth element.
  * 7: an input message's optional fourth element, a snapshot ack (one message fewer per snapshot).
+ * 8: predict mode for the game API: record bits carry game input values and game messages, checkpoint input rows
+ *    an optional eighth element (the player's game input values).
  */
-export const PROTOCOL_VERSION = 7;
+export const PROTOCOL_VERSION = 8;
 
 /** Opcodes of messages a client sends to the server (1–15). */
 export const ClientOpcode = {

@@ -124,8 +124,9 @@ function decodeCheckpoint(value: unknown[]): CheckpointMessage {
   need(Array.isArray(value[4]) && value[4].length <= MAX_RECORD_MEMBERSHIP_CHANGES * 64, 'checkpoint.inputs must be an array');
   const inputs: PlayerInputState[] = (value[4] as unknown[]).map((row, i) => {
     const what = `checkpoint.inputs[${i}]`;
-    need(Array.isArray(row) && row.length === 7, `${what} must be [playerId, moveX, moveZ, yaw, pitch, buttons, yawStep]`);
-    const v = validateInputCommand({ moveX: row[1], moveZ: row[2], yaw: row[3], pitch: row[4], buttons: row[5] });
+    need(Array.isArray(row) && (row.length === 7 || row.length === 8), `${what} must be [playerId, moveX, moveZ, yaw, pitch, buttons, yawStep, game?]`);
+    need(row.length === 7 || (Array.isArray(row[7]) && row[7].length > 0), `${what}.game must be a non-empty array of integers`);
+    const v = validateInputCommand({ moveX: row[1], moveZ: row[2], yaw: row[3], pitch: row[4], buttons: row[5], game: row[7] });
     need(v.ok && !v.clamped, `${what} is not a valid command`);
     const yawStep = int(row[6], `${what}.yawStep`, -32768);
     need(yawStep <= 32767, `${what}.yawStep must be within ±32768`);

@@ -85,6 +85,7 @@ export function defineScenario<T extends ScenarioInput>(input: T): DefinedScenar
   for (const key of Object.keys(givenParams)) params[key] = checkParamSpec(name, key, givenParams[key]);
   const golden = input.golden ?? DEFAULT_GOLDEN;
   if (!Number.isInteger(golden.ticks) || golden.ticks < 0 || !Number.isInteger(golden.bots) || golden.bots < 0) fail(name, 'golden must be {ticks, bots} of integers ≥ 0');
+  if (input.tickCostMs !== undefined && !(finite(input.tickCostMs) && input.tickCostMs > 0)) fail(name, 'tickCostMs must be a positive number of milliseconds');
   const def = {
     ...input,
     params: Object.freeze(params),

@@ -128,6 +128,12 @@ export interface ScenarioDefinition {
    * ScenarioInstance.onMessage on the tick the server stamps them with, and the input log records them.
    */
   messages?: Readonly<Record<string, GameMessageSpec>>;
+  /**
+   * Estimated time of one tick at default parameters with a few players (ms, one core of a quiet desktop; `npm run
+   * bench` or `run` measures it). With it, `--net-mode auto` serves the scenario in predict mode when a client's
+   * frame affords the rollback; without it, only when predict is asked for by name.
+   */
+  tickCostMs?: number;
   /** World limits (maxBodies, …) this scene needs. */
   world?: Omit<PhysicsWorldOptions, 'wasmBinary' | 'wasmUrl'>;
   /** Builds the static scene and returns the live instance. */

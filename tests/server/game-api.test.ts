@@ -31,10 +31,10 @@ async function sdkClient(harness: Harness, name: string): Promise<NetClient> {
 }
 
 describe('game input (server and SDK)', () => {
-  it('tells the client the scenario\'s game input fields in the welcome, and serves snapshots though predict was asked for', async () => {
+  it('tells the client the scenario\'s game input fields in the welcome, and runs the room in predict mode when asked', async () => {
     h = await startHarness({ scenarios: [pushBallScenario], netMode: 'predict' });
     const c = await sdkClient(h, 'ann');
-    expect(c.welcome!.netMode).toBe('snapshot');
+    expect(c.welcome!.netMode).toBe('predict');
     expect(c.welcome!.scenario.game?.input).toEqual([
       { name: 'lift', min: 0, max: 1 },
       { name: 'push', min: -100, max: 100 },

@@ -33,11 +33,11 @@ describe('net-mode-policy', () => {
     expect(isNetModeRequest('lockstep')).toBe(false);
   });
 
-  it('serves snapshots to a scenario that uses the game API, even when predict is asked for, and says why', () => {
-    for (const request of ['auto', 'predict'] as const) {
-      const d = decideNetMode(request, 'cubes-901', {}, true);
-      expect(d.mode).toBe('snapshot');
-      expect(d.note).toMatch(/uses the game API \(game input, state or messages\), which predict mode does not carry/);
-    }
+  it('predicts a scenario outside the built-ins on auto when its own tickCostMs fits the frame, and says why not when it does not', () => {
+    expect(decideNetMode('auto', 'ball-goals', {}, 0.2)).toEqual({ mode: 'predict', affordableRollbackTicks: 83, note: null });
+    const heavy = decideNetMode('auto', 'ball-goals', {}, 5);
+    expect(heavy.mode).toBe('snapshot');
+    expect(heavy.note).toMatch(/affords 3 ticks of rollback/);
+    expect(decideNetMode('auto', 'ball-goals', {}).note).toMatch(/gives no tickCostMs/);
   });
 });

@@ -22,6 +22,7 @@ function link(clock: { ms: number }): PredictLink & { sent: ClientMessage[]; err
     send: (m: ClientMessage) => l.sent.push(m),
     nowMs: () => clock.ms,
     events: () => {},
+    gameState: () => {},
     protocolError: (m: string) => l.errors.push(m),
     fellBack: (reason: string) => (l.fellBackWith = reason),
   };

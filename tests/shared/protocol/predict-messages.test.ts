@@ -21,6 +21,9 @@ describe('predict-messages', () => {
   it('round-trips checkpoints and records, with joins and the hash only when present', () => {
     const checkpoint: CheckpointMessage = { type: 'checkpoint', tick: 1234, seed: 'seed-7', bytes: Uint8Array.of(1, 2, 3), inputs: [{ playerId: 4, input: { moveX: -3, moveZ: 127, yaw: 65535, pitch: -16384, buttons: 5 }, yawStep: -250 }] };
     expect(decodeServerMessage(encodeServerMessage(checkpoint))).toEqual({ ok: true, message: checkpoint });
+    // A game-API scenario's player also carries its game input values.
+    const withGame: CheckpointMessage = { ...checkpoint, inputs: [{ ...checkpoint.inputs[0], input: { ...checkpoint.inputs[0].input, game: [1, -40] } }] };
+    expect(decodeServerMessage(encodeServerMessage(withGame))).toEqual({ ok: true, message: withGame });
     const plain: RecordMessage = { type: 'record', tickLow: 17, bits: Uint8Array.of(9), joins: [], hash: null };
     expect(encodeServerMessage(plain).length).toBeLessThanOrEqual(6);
     expect(decodeServerMessage(encodeServerMessage(plain))).toEqual({ ok: true, message: plain });
@@ -43,6 +46,12 @@ describe('predict-messages', () => {
       [ServerOpcode.Checkpoint, 1, 1, Uint8Array.of(0), [[1, 0, 0, 0, 0, 0]]],
       [ServerOpcode.Checkpoint, 1, 1, Uint8Array.of(0), [[1, 200, 0, 0, 0, 0, 0]]],
       [ServerOpcode.Checkpoint, -1, 1, Uint8Array.of(0), []],
+      [ServerOpcode.Checkpoint, 1, 1, Uint8Array.of(0), [[1, 0, 0, 0, 0, 0, 0, []]]],
+      [ServerOpcode.Checkpoint, 1, 1, Uint8Array.of(0), [[1, 0, 0, 0, 0, 0, 0, 5]]],
+      [ServerOpcode.Checkpoint, 1, 1, Uint8Array.of(0), [[1, 0, 0, 0, 0, 0, 0, [0.5]]]],
+      [ServerOpcode.Checkpoint, 1, 1, Uint8Array.of(0), [[1, 0, 0, 0, 0, 0, 0, [2_000_000]]]],
+      [ServerOpcode.Checkpoint, 1, 1, Uint8Array.of(0), [[1, 0, 0, 0, 0, 0, 0, new Array(17).fill(0)]]],
+      [ServerOpcode.Checkpoint, 1, 1, Uint8Array.of(0), [[1, 0, 0, 0, 0, 0, 0, [0], 9]]],
     ];
     for (const value of bad) {
       const r = decodeServerMessage(packValue(value));
