@@ -7,7 +7,7 @@ import type { CheckpointMessage, RecordMessage } from '../../shared/protocol/pre
 import type { WelcomeMessage } from '../../shared/protocol/server-messages.ts';
 import type { InputCommand } from '../../shared/sim/input.ts';
 import type { BodyDescriptor, CharacterState, SimEvent } from '../../shared/sim/types.ts';
-import { Predictor, type PredictSimulation } from './predictor.ts';
+import { DEFAULT_MAX_AHEAD_TICKS, Predictor, type PredictSimulation } from './predictor.ts';
 import { CorrectionSmoother, type BodyRead } from './smoothing.ts';
 
 /** What createSimulation gets: the room's scenario, resolved parameters and seed. */
@@ -21,7 +21,7 @@ export interface PredictSetup {
 export interface PredictOptions {
   /** Builds the local simulation (Node: Simulation.create with the scenario registry; a page: its physics bundle). */
   createSimulation(setup: PredictSetup): Promise<PredictSimulation>;
-  /** Most ticks the prediction runs ahead of the newest confirmed tick. Default 30 (500 ms). */
+  /** Most ticks the prediction runs ahead of the newest confirmed tick. Default 60 (1 s): DEFAULT_MAX_AHEAD_TICKS. */
   maxAheadTicks?: number;
   /**
    * A fast checkpoint every this many ticks (1: every tick). Saving a big world costs more than stepping it; a
@@ -279,7 +279,7 @@ export class PredictSession {
       this.predictor = new Predictor(sim, m, this.welcome.playerId, {
         confirmedEvents: (events) => this.link.events(events),
         desync: (tick, ours, theirs) => this.onDesync(tick, ours, theirs),
-      }, this.opts.maxAheadTicks ?? 30, this.opts.checkpointEveryTicks ?? 4);
+      }, this.opts.maxAheadTicks ?? DEFAULT_MAX_AHEAD_TICKS, this.opts.checkpointEveryTicks ?? 4);
     } catch (error) {
       this.fallBack(`the checkpoint could not be restored: ${(error as Error).message}`);
       return;
