@@ -398,7 +398,10 @@ export class LinkSession {
     // The pump runs every half tick, so the command for tick T first goes out within half a tick after the server's
     // tick count (at arrival) passes T: T is then the next tick the server runs, at least half a tick away. The lead
     // (jitter margin + boost) only moves the target further when it needs more than that half tick.
-    let target = Math.floor(sync.serverTickAt(now + oneWayMs) + Math.max(0, lead.leadTicks - PUMP_SPACING_TICKS));
+    // A predicting client's input delay: commands go out for ticks this much later than the local present.
+    const p = this.predictSession;
+    const delay = p?.active ? p.inputDelayTicks : 0;
+    let target = Math.floor(sync.serverTickAt(now + oneWayMs) + Math.max(0, lead.leadTicks - PUMP_SPACING_TICKS)) + delay;
     const newest = this.sender.newestTick;
     if (atFrame && newest >= 0 && newest === target && movesDiffer(this.sender.command, this.sender.commandFor(newest))) target = newest + 1;
     if (target >= 0) {
@@ -407,8 +410,9 @@ export class LinkSession {
         this.counters.inputMessages++;
         this.send(msg);
       }
-      // The local simulation runs to the newest tick the sender fixed: the own command of that tick is in it.
-      this.predictSession?.advance(this.sender.newestTick + 1, (t) => this.sender.commandFor(t));
+      // The local simulation runs to the newest tick the sender fixed, less the delay: with no delay, the own command
+      // of that tick is in it.
+      p?.advance(this.sender.newestTick + 1 - delay, (t) => this.sender.commandFor(t));
     }
   }
 

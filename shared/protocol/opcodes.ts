@@ -9,8 +9,9 @@
  *    messages (docs/protocol.md, docs/game-api.md).
  * 5: the pong's room pace (roomTicksPerSecond, roomSlow).
  * 6: the bye reason `room-moved` (and error code) with the hosting server's URL as the bye's fourth element.
+ * 7: the welcome's inputDelayTicks (predict mode's input delay the room announces).
  */
-export const PROTOCOL_VERSION = 6;
+export const PROTOCOL_VERSION = 7;
 
 /** Opcodes of messages a client sends to the server (1–15). */
 export const ClientOpcode = {
