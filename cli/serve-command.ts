@@ -1,4 +1,4 @@
-// `serve [--port 8080] [--host 127.0.0.1] [--scenario NAME] [--param k=v] [--snapshot-rate 30] [--net-mode auto] [--record DIR]
+// `serve [--port 8080] [--host 127.0.0.1] [--scenario NAME] [--param k=v] [--snapshot-rate 30] [--net-mode auto] [--input-delay-ticks 0] [--record DIR]
 // [--max-clients N] [--tls-cert FILE --tls-key FILE] [--trust-proxy] [--replay FILE] [access flags] …`: runs the networked server
 // (HTTP(S) + WebSocket on one port) until SIGINT/SIGTERM. Secrets may come from the environment (TAOS_ADMIN_TOKEN,
 // TAOS_JOIN_SECRET) so they stay out of `ps` output.
@@ -11,6 +11,7 @@ import { JOIN_SECRET_ENV, MIN_JOIN_SECRET_LENGTH } from '../server/access/seat-t
 import type { ConnectionPolicyOptions } from '../server/connection-policy.ts';
 import { isNetModeRequest, type NetModeRequest } from '../server/net-mode-policy.ts';
 import { DEFAULT_CHECKPOINT_EVERY_SECONDS, DEFAULT_DURABILITY, DEFAULT_DURABILITY_INTERVAL_MS, DURABILITY_MODES, type DurabilityMode } from '../server/recorder.ts';
+import { MAX_INPUT_DELAY_TICKS } from '../shared/protocol/limits.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import { LogFormat } from '../server/pretty-log.ts';
 import { agonesOptions, FLEET_FLAGS, fleetOptions } from './fleet-flags.ts';
@@ -135,6 +136,7 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
       seed: parseSeed(args.string('seed')),
       snapshotRateHz: args.number('snapshot-rate', 30),
       netMode: netModeFlag(args.string('net-mode')),
+      inputDelayTicks: args.number('input-delay-ticks', 0),
       maxClients: args.number('max-clients', 32),
       maxRooms: args.number('max-rooms'),
       roomWorkers: args.number('room-workers', availableParallelism()),
@@ -187,6 +189,7 @@ export const serveCommand: CommandSpec = {
     { name: 'seed', kind: 'string', valueName: 'SEED', description: 'simulation seed of every room; default 1' },
     { name: 'snapshot-rate', kind: 'int', valueName: 'HZ', description: `snapshots per second per client (1-${TICK_RATE_HZ}); default 30`, min: 1, max: TICK_RATE_HZ },
     { name: 'net-mode', kind: 'string', valueName: 'MODE', description: 'how rooms serve clients: snapshot, predict, or auto (predict where a frame affords the rollback); default auto' },
+    { name: 'input-delay-ticks', kind: 'int', valueName: 'N', description: `input delay predict rooms announce: own commands apply N ticks after they are made (0-${MAX_INPUT_DELAY_TICKS}); default 0`, min: 0, max: MAX_INPUT_DELAY_TICKS },
     { name: 'record', kind: 'string', valueName: 'DIR', description: "write every room's input log into DIR" },
     { name: 'durability', kind: 'string', valueName: 'MODE', description: `when recorded ticks reach the disk: tick, interval or off; default ${DEFAULT_DURABILITY}` },
     { name: 'durability-interval-ms', kind: 'int', valueName: 'MS', description: `sync period of --durability interval; default ${DEFAULT_DURABILITY_INTERVAL_MS}`, min: 1, max: 60_000 },

@@ -19,7 +19,7 @@ import { GameStateMirror, type GameStateChange } from './game-state.ts';
 import type { InputLeadOptions } from './input-sender.ts';
 import type { InterpolatedFrame, InterpolationOptions } from './interpolation.ts';
 import { LinkSession, type LinkClosedInfo, type SnapshotInfo } from './link-session.ts';
-import type { PredictedFrame, PredictionStats, PredictOptions } from './prediction/predict-session.ts';
+import { checkInputDelay, type PredictedFrame, type PredictionStats, type PredictOptions } from './prediction/predict-session.ts';
 import { backoffDelayMs, isRetryable, reconnectPolicy, type ReconnectOptions, type ReconnectPolicy } from './reconnect-policy.ts';
 import type { TransportFactory } from './transport.ts';
 import { webSocketTransport } from './websocket-transport.ts';
@@ -206,6 +206,7 @@ export class NetClient {
       const token = opts[key];
       if (token !== undefined && (typeof token !== 'string' || !TOKEN_PATTERN.test(token))) throw new Error(`connect: ${key} must be a token of A-Z a-z 0-9 _ . - characters`);
     }
+    if (opts.predict?.inputDelayTicks !== undefined) checkInputDelay(opts.predict.inputDelayTicks);
     this.resumeTokenValue = opts.resumeToken ?? null;
     this.urlValue = url;
     this.name = name.name;

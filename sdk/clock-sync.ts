@@ -1,6 +1,10 @@
 // Clock sync: turns ping/pong samples into RTT, jitter, the server-minus-local clock offset and an estimate of the
 // server's (fractional) tick at any local time. The offset comes from the lowest-RTT recent sample (least queueing);
-// the tick phase from the server's own clock: serverTimeMs − serverTick·tickMs is smallest right after a tick.
+// the tick phase from the server's own clock: serverTimeMs − serverTick·tickMs is smallest right after a tick, among
+// the samples since the server last fell behind (a room slowed by load runs fewer ticks than its clock says).
+
+/** How far (ticks) an older sample's tick phase may precede the newest one's and still count. */
+const PHASE_SPREAD_TICKS = 2;
 
 /** One pong as the client saw it. */
 export interface PongSample {
@@ -62,10 +66,13 @@ export class ClockSync {
     if (this.samples.length > this.windowSize) this.samples.shift();
     this.smoothedRtt = this.smoothedRtt === null ? rtt : this.smoothedRtt + (rtt - this.smoothedRtt) / 8;
     let best = this.samples[0];
-    let anchor = Infinity;
+    // A steady server's anchors lie within one tick of each other; an older sample more than PHASE_SPREAD_TICKS before
+    // the newest one is from before the server fell behind (a stall, a slowed room) and no longer says its phase.
+    const newest = this.samples[this.samples.length - 1].anchorMs;
+    let anchor = newest;
     for (const s of this.samples) {
       if (s.rttMs < best.rttMs) best = s;
-      if (s.anchorMs < anchor) anchor = s.anchorMs;
+      if (s.anchorMs < anchor && s.anchorMs > newest - PHASE_SPREAD_TICKS * this.tickMs) anchor = s.anchorMs;
     }
     this.originLocalMs = anchor - best.offsetMs;
     return true;

@@ -102,6 +102,11 @@ export interface LinkCounters {
 
 const INITIAL_PING_SPACING_MS = 100;
 
+/** Whether a command moves or presses differently from the one fixed for a tick (look angles aside). */
+function movesDiffer(a: InputCommand, fixed: InputCommand | undefined): boolean {
+  return fixed !== undefined && (a.moveX !== fixed.moveX || a.moveZ !== fixed.moveZ || a.buttons !== fixed.buttons);
+}
+
 /** One connection from hello to close. */
 export class LinkSession {
   private readonly o: LinkSessionOptions;
@@ -379,11 +384,17 @@ export class LinkSession {
   predictedFrame(): PredictedFrame | null {
     const p = this.predictSession;
     if (!p || !p.active || this.ended || this.closing) return null;
-    this.inputStep();
+    this.inputStep(true);
     return p.frame();
   }
 
-  private inputStep(): void {
+  /**
+   * `atFrame`: a frame is about to be drawn. When the move axes or buttons changed since the newest fixed tick, the
+   * next tick is fixed with them at once, up to one tick before the clock asks for it (the lead grows by at most that
+   * tick), so the frame drawn right after a key has simulated the key's tick. A look change alone waits for the clock
+   * (the camera turns locally), so steady mouse movement does not keep the lead a tick longer.
+   */
+  private inputStep(atFrame = false): void {
     const sync = this.sync!;
     const lead = this.lead!;
     const now = this.o.clock.nowMs();
@@ -392,7 +403,12 @@ export class LinkSession {
     // The pump runs every half tick, so the command for tick T first goes out within half a tick after the server's
     // tick count (at arrival) passes T: T is then the next tick the server runs, at least half a tick away. The lead
     // (jitter margin + boost) only moves the target further when it needs more than that half tick.
-    const target = Math.floor(sync.serverTickAt(now + oneWayMs) + Math.max(0, lead.leadTicks - PUMP_SPACING_TICKS));
+    // A predicting client's input delay: commands go out for ticks this much later than the local present.
+    const p = this.predictSession;
+    const delay = p?.active ? p.inputDelayTicks : 0;
+    let target = Math.floor(sync.serverTickAt(now + oneWayMs) + Math.max(0, lead.leadTicks - PUMP_SPACING_TICKS)) + delay;
+    const newest = this.sender.newestTick;
+    if (atFrame && newest >= 0 && newest === target && movesDiffer(this.sender.command, this.sender.commandFor(newest))) target = newest + 1;
     const msg = target >= 0 ? this.sender.update(target) : null;
     if (msg !== null) {
       const ackTick = this.acks.carry();
@@ -406,8 +422,9 @@ export class LinkSession {
         this.send({ type: 'ack', tick: ackTick });
       }
     }
-    // The local simulation runs to the newest tick the sender fixed: the own command of that tick is in it.
-    if (target >= 0) this.predictSession?.advance(this.sender.newestTick + 1, (t) => this.sender.commandFor(t));
+    // The local simulation runs to the newest tick the sender fixed, less the delay: with no delay, the own command of
+    // that tick is in it.
+    if (target >= 0) p?.advance(this.sender.newestTick + 1 - delay, (t) => this.sender.commandFor(t));
   }
 
   private onSnapshot(bytes: Uint8Array, descriptors: BodyDescriptor[], sizeBytes: number, now: number): void {

@@ -241,7 +241,8 @@ export class ClientSession implements MemberSink, ResumeHolder {
     this.state = 'joined';
     const resume = this.ctx.access.resume;
     const token = resume ? resume.issue(room, seat.playerId, this) : null;
-    this.send({ ...seat.welcome, resumeToken: token, resumeGraceMs: resume ? resume.graceMs : 0, resumed });
+    const inputDelayTicks = seat.welcome.netMode === NetMode.Predict ? this.ctx.inputDelayTicks : 0;
+    this.send({ ...seat.welcome, resumeToken: token, resumeGraceMs: resume ? resume.graceMs : 0, resumed, inputDelayTicks });
     if (resumed) {
       this.ctx.metrics.resumes.inc();
       this.ctx.logger.info({ session: this.id, remote: this.conn.remote, room: room.id, playerId: seat.playerId }, 'player resumed');

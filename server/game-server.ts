@@ -1,7 +1,7 @@
 // The transport-agnostic server core: rooms, client sessions, metrics and logs on one clock. It accepts
 // ServerConnections from any transport (the ws gateway, or in-memory links in tests) and shuts everything down cleanly.
 import type { Clock } from '../shared/clock.ts';
-import { ByeReason, encodeServerMessage } from '../shared/protocol/index.ts';
+import { ByeReason, encodeServerMessage, MAX_INPUT_DELAY_TICKS } from '../shared/protocol/index.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
 import type { SessionAccess } from './access/admission.ts';
 import { DEFAULT_RESUME_GRACE_MS, ResumeTokens } from './access/resume-tokens.ts';
@@ -43,6 +43,8 @@ export interface GameServerOptions {
   pauseWhenEmpty?: boolean;
   /** Net mode of rooms not asked for one ('auto': predict where the cost estimate allows). Default 'auto'. */
   netMode?: NetModeRequest;
+  /** Input delay (ticks, 0..MAX_INPUT_DELAY_TICKS) the welcome of a predict room announces. Default 0. */
+  inputDelayTicks?: number;
   limits?: Partial<SessionLimits>;
   /** How long a player whose link dropped is held for a reconnect with its resume token (ms). Default 30 000; 0: off. */
   resumeGraceMs?: number;
@@ -68,6 +70,8 @@ export class GameServer {
   readonly rooms: RoomManager;
   readonly limits: SessionLimits;
   readonly snapshotRateHz: number;
+  /** Input delay (ticks) predict rooms announce. */
+  readonly inputDelayTicks: number;
   readonly maxConnections: number;
   /** Seat and resume rules every session applies. */
   readonly access: SessionAccess;
@@ -84,6 +88,10 @@ export class GameServer {
     this.limits = { ...DEFAULT_SESSION_LIMITS, ...opts.limits };
     this.snapshotRateHz = opts.snapshotRateHz ?? 30;
     if (!(this.snapshotRateHz >= 1 && this.snapshotRateHz <= TICK_RATE_HZ)) throw new Error(`snapshot rate must be in [1, ${TICK_RATE_HZ}] Hz, got ${this.snapshotRateHz}`);
+    this.inputDelayTicks = opts.inputDelayTicks ?? 0;
+    if (!(Number.isInteger(this.inputDelayTicks) && this.inputDelayTicks >= 0 && this.inputDelayTicks <= MAX_INPUT_DELAY_TICKS)) {
+      throw new Error(`input delay must be an integer in [0, ${MAX_INPUT_DELAY_TICKS}] ticks, got ${this.inputDelayTicks}`);
+    }
     this.maxConnections = opts.maxConnections ?? 256;
     this.startedMs = this.clock.nowMs();
     this.workers = opts.workers ?? null;
@@ -190,6 +198,7 @@ export class GameServer {
       rooms: this.rooms,
       limits: this.limits,
       access: this.access,
+      inputDelayTicks: this.inputDelayTicks,
       onEnd: (s) => this.sessions.delete(s),
     });
     if (!session.ended) this.sessions.add(session);

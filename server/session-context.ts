@@ -56,6 +56,8 @@ export interface SessionContext {
   limits: SessionLimits;
   /** Seat and resume rules. */
   access: SessionAccess;
+  /** Input delay (ticks) a predict room's welcome announces. */
+  inputDelayTicks: number;
   /** Called once when the session ends. */
   onEnd(session: ClientSession): void;
 }

@@ -52,6 +52,8 @@ export interface StartServerOptions extends AccessOptions {
   snapshotRateHz?: number;
   /** Net mode of rooms not asked for one ('auto': predict where the cost estimate allows). Default 'auto'. */
   netMode?: NetModeRequest;
+  /** Input delay (ticks) predict rooms announce in the welcome (serve --input-delay-ticks). Default 0. */
+  inputDelayTicks?: number;
   /** Record every room's input log here. */
   recordDir?: string | null;
   /** A state hash record in recordings every N ticks (default 60; 1 checks every tick on replay). */
@@ -205,6 +207,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
     logger,
     snapshotRateHz: opts.snapshotRateHz,
     netMode: opts.netMode,
+    inputDelayTicks: opts.inputDelayTicks,
     maxClientsPerRoom: opts.maxClients,
     maxConnections: opts.maxConnections,
     maxRooms: opts.maxRooms,

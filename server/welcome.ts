@@ -51,6 +51,7 @@ export function buildWelcome(room: Room, playerId: number, resume: { token: stri
     resumeGraceMs: resume.graceMs,
     resumed: resume.resumed,
     netMode: room.netMode,
+    inputDelayTicks: 0,
   };
   return { message, encoder };
 }

@@ -1,5 +1,6 @@
-// The per-frame loop of a joined room: predicted (own simulation) or interpolated view → world → camera → render,
-// input at 60 Hz, HUD and the test hook's state. Owns the frame timer and the cameras; the session owns the network.
+// The per-frame loop of a joined room: input sampled → predicted (own simulation) or interpolated view → world →
+// camera → render; input also at 60 Hz between frames; HUD and the test hook's state. Owns the frame timer and the
+// cameras; the session owns the network.
 import { FollowCamera, OrbitCamera } from '../render/camera.ts';
 import type { CameraView } from '../render/renderer.ts';
 import type { Renderer } from '../render/renderer.ts';
@@ -125,6 +126,8 @@ export class GameLoop {
   }
 
   private draw(nowMs: number, dt: number): void {
+    // Input is sampled at the frame: a predicted frame fixes and simulates the new command's tick before drawing.
+    this.session.setInput(this.input.sample(nowMs));
     const predicted = this.session.predicted();
     const f = predicted ? { view: predicted.view, renderTick: predicted.tick, bufferDepth: 0, delayMs: 0 } : this.session.frame(nowMs);
     if (predicted) this.describeSpawns(predicted.view, predicted.tick);

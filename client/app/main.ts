@@ -152,7 +152,9 @@ function join(room: string | null, name: string): void {
   const input = new InputController(byId('scene'));
   const wsUrl = `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/`;
 
-  page.session = openSession(wsUrl, { name, room }, {
+  // ?inputDelay=N: predicted play's input delay in ticks instead of the room's (a bad value is refused like a bad name).
+  const inputDelay = new URLSearchParams(location.search).get('inputDelay');
+  page.session = openSession(wsUrl, { name, room, inputDelayTicks: inputDelay === null ? undefined : Number(inputDelay) }, {
     onWelcome(welcome) {
       page.welcomeMs ??= performance.now();
       page.welcome = welcome;

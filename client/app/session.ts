@@ -8,18 +8,22 @@ import { loadPhysics } from './physics-loader.ts';
 import type { NetSession, SessionFrame, SessionHandlers } from './session-types.ts';
 
 /** Predicted play for the page: the room's simulation comes from the physics chunk, fetched on first use. */
-const PREDICT: PredictOptions = {
-  async createSimulation(setup) {
-    const physics = await loadPhysics();
-    return physics.Simulation.create({ scenario: physics.getScenario(setup.scenario), params: setup.params, seed: setup.seed });
-  },
-};
+function predictOptions(inputDelayTicks: number | undefined): PredictOptions {
+  return {
+    async createSimulation(setup) {
+      const physics = await loadPhysics();
+      return physics.Simulation.create({ scenario: physics.getScenario(setup.scenario), params: setup.params, seed: setup.seed });
+    },
+    ...(inputDelayTicks === undefined ? {} : { inputDelayTicks }),
+  };
+}
 
 /** Connects to `wsUrl` and reports through `handlers`; the returned session lives until close() or onClosed. */
-export function openSession(wsUrl: string, opts: { name: string; room: string | null }, handlers: SessionHandlers): NetSession {
+/** `inputDelayTicks`: predicted play's input delay instead of the room's (undefined: the room's). */
+export function openSession(wsUrl: string, opts: { name: string; room: string | null; inputDelayTicks?: number }, handlers: SessionHandlers): NetSession {
   let client: NetClient;
   try {
-    client = connect(wsUrl, { name: opts.name, room: opts.room, predict: PREDICT });
+    client = connect(wsUrl, { name: opts.name, room: opts.room, predict: predictOptions(opts.inputDelayTicks) });
   } catch (err) {
     // Bad name or room id: report it like any other refusal.
     const message = (err as Error).message;

@@ -4,12 +4,13 @@
 // confirmed ticks, resyncs on a hash mismatch, measures rollback depth and re-sim time every frame and falls back to
 // snapshots when the frame budget stays blown.
 import type { ClientMessage } from '../../shared/protocol/client-messages.ts';
+import { MAX_INPUT_DELAY_TICKS } from '../../shared/protocol/limits.ts';
 import type { CheckpointMessage, RecordMessage } from '../../shared/protocol/predict-messages.ts';
 import type { WelcomeMessage } from '../../shared/protocol/server-messages.ts';
 import type { GameStateValue } from '../../shared/sim/game-state.ts';
 import type { InputCommand } from '../../shared/sim/input.ts';
 import type { BodyDescriptor, CharacterState, SimEvent } from '../../shared/sim/types.ts';
-import { Predictor, type PredictSimulation } from './predictor.ts';
+import { DEFAULT_MAX_AHEAD_TICKS, Predictor, type PredictSimulation } from './predictor.ts';
 import { CorrectionSmoother, type BodyRead } from './smoothing.ts';
 
 /** What createSimulation gets: the room's scenario, resolved parameters and seed. */
@@ -23,7 +24,7 @@ export interface PredictSetup {
 export interface PredictOptions {
   /** Builds the local simulation (Node: Simulation.create with the scenario registry; a page: its physics bundle). */
   createSimulation(setup: PredictSetup): Promise<PredictSimulation>;
-  /** Most ticks the prediction runs ahead of the newest confirmed tick. Default 30 (500 ms). */
+  /** Most ticks the prediction runs ahead of the newest confirmed tick. Default 60 (1 s): DEFAULT_MAX_AHEAD_TICKS. */
   maxAheadTicks?: number;
   /**
    * A fast checkpoint every this many ticks (1: every tick). Saving a big world costs more than stepping it; a
@@ -36,6 +37,12 @@ export interface PredictOptions {
   fallbackAfterMs?: number;
   /** Half-life of correction smoothing (ms; 0: none). Default 80. */
   smoothingHalfLifeMs?: number;
+  /**
+   * Ticks between an own command and the local tick that applies it (0..MAX_INPUT_DELAY_TICKS): the command is sent
+   * for a tick this much later, so it reaches the server earlier relative to its tick and fewer own commands arrive
+   * late, at the cost of showing the own move this many ticks later. Default: what the room's welcome announces.
+   */
+  inputDelayTicks?: number;
 }
 
 /** The predicted world for a renderer (copies, smoothed). */
@@ -104,12 +111,22 @@ function percentile(values: readonly number[], p: number): number {
   return sorted[Math.min(sorted.length - 1, Math.floor(p * sorted.length))];
 }
 
+/** Checks an input delay (the predict option's or a welcome's); throws a clear Error for a bad one. */
+export function checkInputDelay(ticks: number): number {
+  if (!Number.isInteger(ticks) || ticks < 0 || ticks > MAX_INPUT_DELAY_TICKS) {
+    throw new Error(`connect: predict.inputDelayTicks must be an integer in [0, ${MAX_INPUT_DELAY_TICKS}], got ${String(ticks)}`);
+  }
+  return ticks;
+}
+
 /** Predicted play on one connection; built by the link when the welcome says the room predicts. */
 export class PredictSession {
   private readonly opts: PredictOptions;
   private readonly link: PredictLink;
   private readonly welcome: WelcomeMessage;
   private readonly smoother: CorrectionSmoother;
+  /** Ticks between an own command and the local tick that applies it (the option, else the room's). */
+  readonly inputDelayTicks: number;
   private sim: PredictSimulation | null = null;
   private simPromise: Promise<PredictSimulation> | null = null;
   private predictor: Predictor | null = null;
@@ -137,6 +154,7 @@ export class PredictSession {
 
   constructor(welcome: WelcomeMessage, opts: PredictOptions, link: PredictLink) {
     if (typeof opts?.createSimulation !== 'function') throw new Error('connect: predict.createSimulation must be a function');
+    this.inputDelayTicks = checkInputDelay(opts.inputDelayTicks ?? welcome.inputDelayTicks);
     this.welcome = welcome;
     this.opts = opts;
     this.link = link;
@@ -238,7 +256,7 @@ export class PredictSession {
     return {
       mode: this.modeValue,
       reason: this.reason,
-      inputDelayTicks: 0,
+      inputDelayTicks: this.inputDelayTicks,
       presentTick: this.predictor?.presentTick ?? null,
       confirmedTick: this.predictor?.confirmedTick ?? null,
       rollbackDepth: this.lastDepth,
@@ -292,7 +310,7 @@ export class PredictSession {
         confirmedEvents: (events) => this.link.events(events),
         confirmedState: (values) => this.link.gameState(values),
         desync: (tick, ours, theirs) => this.onDesync(tick, ours, theirs),
-      }, this.opts.maxAheadTicks ?? 30, this.opts.checkpointEveryTicks ?? 4);
+      }, this.opts.maxAheadTicks ?? DEFAULT_MAX_AHEAD_TICKS, this.opts.checkpointEveryTicks ?? 4);
       const state = this.predictor.startState();
       if (state !== null) this.link.gameState(state);
     } catch (error) {

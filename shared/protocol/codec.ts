@@ -148,6 +148,7 @@ export function encodeServerMessage(m: ServerMessage): Uint8Array {
           resumeGraceMs: m.resumeGraceMs,
           resumed: m.resumed,
           netMode: m.netMode,
+          inputDelayTicks: m.inputDelayTicks,
         },
       ]);
     case 'pong':

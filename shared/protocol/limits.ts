@@ -13,6 +13,8 @@ export const MAX_ROOM_ID_LENGTH = 64;
 export const ROOM_ID_PATTERN = /^[A-Za-z0-9_-]{1,64}$/;
 /** Most commands in one input message (the newest plus repeats of the previous ones). */
 export const MAX_INPUT_COMMANDS_PER_MESSAGE = 16;
+/** Most ticks of input delay a room may announce (predict mode: own commands apply this many ticks later). */
+export const MAX_INPUT_DELAY_TICKS = 15;
 /** Default number of commands per input message: the new one plus three repeats. */
 export const DEFAULT_INPUT_REDUNDANCY = 4;
 /** Ticks are unsigned 32-bit on the wire (2^32 ticks at 60 Hz is 2.2 years). */

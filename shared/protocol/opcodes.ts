@@ -12,8 +12,9 @@
  * 7: an input message's optional fourth element, a snapshot ack (one message fewer per snapshot).
  * 8: predict mode for the game API: record bits carry game input values and game messages, checkpoint input rows
  *    an optional eighth element (the player's game input values).
+ * 9: the welcome's inputDelayTicks (predict mode's input delay the room announces).
  */
-export const PROTOCOL_VERSION = 8;
+export const PROTOCOL_VERSION = 9;
 
 /** Opcodes of messages a client sends to the server (1–15). */
 export const ClientOpcode = {

@@ -7,7 +7,7 @@ import { unpackDescriptors } from './descriptor-codec.ts';
 import { checkGameStateValues, unpackGameSchema, type GameSchemaInfo } from './game-schema-codec.ts';
 import { validateInputCommand } from '../sim/input.ts';
 import type { PlayerJoin } from '../sim/types.ts';
-import { MAX_NAME_LENGTH, MAX_TOKEN_LENGTH, TOKEN_PATTERN } from './limits.ts';
+import { MAX_INPUT_DELAY_TICKS, MAX_NAME_LENGTH, MAX_TOKEN_LENGTH, TOKEN_PATTERN } from './limits.ts';
 import { isNetMode, MAX_CHECKPOINT_BYTES, type CheckpointMessage, type NetMode, type RecordMessage } from './predict-messages.ts';
 import { MAX_RECORD_MEMBERSHIP_CHANGES, type PlayerInputState } from './record-delta.ts';
 import { PROTOCOL_VERSION, ServerOpcode, type ByeReason, type ErrorCode } from './opcodes.ts';
@@ -102,7 +102,14 @@ function decodeWelcome(v: unknown): WelcomeMessage {
     resumeGraceMs: int(v.resumeGraceMs, 'welcome.resumeGraceMs'),
     resumed: bool(v.resumed, 'welcome.resumed'),
     netMode: netMode(v.netMode, 'welcome.netMode'),
+    inputDelayTicks: inputDelay(v.inputDelayTicks),
   };
+}
+
+function inputDelay(v: unknown): number {
+  const ticks = int(v, 'welcome.inputDelayTicks');
+  need(ticks <= MAX_INPUT_DELAY_TICKS, `welcome.inputDelayTicks must be at most ${MAX_INPUT_DELAY_TICKS}, got ${ticks}`);
+  return ticks;
 }
 
 function netMode(v: unknown, what: string): NetMode {

@@ -44,6 +44,11 @@ export interface WelcomeMessage {
   resumed: boolean;
   /** How the room serves its members; in predict mode a checkpoint follows the welcome and records every tick. */
   netMode: NetMode;
+  /**
+   * Predict mode: ticks between an own command and the local tick that applies it (0: the next tick; at most
+   * MAX_INPUT_DELAY_TICKS). The room's default; a client may choose its own. 0 in snapshot rooms.
+   */
+  inputDelayTicks: number;
 }
 
 /** Answer to ping. */

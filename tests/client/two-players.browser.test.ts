@@ -1,5 +1,6 @@
 // Browser test of two players in one room (real server in-process on loopback port 0, two Chromium processes): keys
-// pressed in one page move its character, and the other page's interpolated state and pixels show it moving.
+// pressed in one page move its character, and the other page's interpolated state and pixels show it moving; in a
+// predict room both pages' own simulations bring the walker to where the server has it stop.
 import { afterAll, beforeAll, expect, it } from 'vitest';
 import type { TaosState } from '../../client/app/test-hook.ts';
 import type { RunningServer } from '../../server/start-server.ts';
@@ -34,6 +35,7 @@ describeBrowser('two players', () => {
     // test is about the interpolated view of another player (tests/client/predicted-play.browser.test.ts covers
     // predict rooms).
     await createRoom(server.url, { scenario: 'shape-rain', roomId: 'duo', params: { count: 1 }, netMode: 'snapshot' });
+    await createRoom(server.url, { scenario: 'shape-rain', roomId: 'duo-predicted', params: { count: 1 }, netMode: 'predict' });
     browser = await launchBrowser();
   });
 
@@ -101,4 +103,58 @@ describeBrowser('two players', () => {
     await a.page.close();
     await other.close();
   });
+
+  it('brings both pages of a predict room to where the server has the walker stop', async () => {
+    const other = await launchBrowser();
+    const a = await browser.newPage();
+    const b = await other.newPage();
+    const predicting = "t.connected && t.net.prediction !== null && t.net.prediction.mode === 'predict' && t.characters.some((c) => c.playerId === t.playerId)";
+    await b.page.goto(new URL('/?room=duo-predicted&name=watcher&hud=0', server.url).href);
+    await waitForHook(b.page, predicting);
+    await a.page.goto(new URL('/?room=duo-predicted&name=walker&hud=0', server.url).href);
+    await waitForHook(a.page, predicting);
+    await waitForHook(b.page, 't.characters.length >= 2 && t.framesRendered >= 3');
+    const walkerId = (await readHook<TaosState>(a.page)).playerId!;
+    const room = server.game.rooms.local('duo-predicted')!;
+    const onServer = (): number[] => {
+      const p = room.sim.characters().find((c) => c.playerId === walkerId)!.position;
+      return [p.x, p.y, p.z];
+    };
+    const start = onServer();
+
+    await a.page.keyboard.down('ShiftLeft');
+    await a.page.keyboard.down('KeyW');
+    await waitForHook(a.page, `t.error !== null || t.characters.some((c) => c.playerId === ${walkerId} && c.position[2] < ${start[2] - 2.5})`, 20_000);
+    await a.page.keyboard.up('KeyW');
+    await a.page.keyboard.up('ShiftLeft');
+
+    // The server's walker stops (two reads 250 ms apart agree); that is where it stands, at that tick.
+    let end = onServer();
+    for (let i = 0; i < 60; i++) {
+      await a.page.waitForTimeout(250);
+      const now = onServer();
+      const still = distance3(now, end) === 0;
+      end = now;
+      if (still) break;
+    }
+    const stoppedTick = room.sim.tick;
+    expect(start[2] - end[2]).toBeGreaterThan(2.5);
+    // Each page's drawn walker comes to within 1 cm of there once the page has confirmed that tick: a page drawing
+    // the walker still somewhere else (or an overshoot that never glides back) fails here.
+    for (const { page } of [a, b]) {
+      await waitForHook(
+        page,
+        `t.net.prediction !== null && t.net.prediction.confirmedTick > ${stoppedTick} && t.characters.some((c) => c.playerId === ${walkerId} && Math.hypot(c.position[0] - ${end[0]}, c.position[1] - ${end[1]}, c.position[2] - ${end[2]}) < 0.01)`,
+        15_000,
+      );
+    }
+    const onA = (await readHook<TaosState>(a.page)).characters.find((c) => c.playerId === walkerId)!.position;
+    const onB = (await readHook<TaosState>(b.page)).characters.find((c) => c.playerId === walkerId)!.position;
+    expect(distance3(onA, onB)).toBeLessThan(0.02);
+    for (const { page } of [a, b]) expect((await readHook<TaosState>(page)).net.prediction?.desyncs).toBe(0);
+    expect(a.errors).toEqual([]);
+    expect(b.errors).toEqual([]);
+    await a.page.close();
+    await other.close();
+  }, 120_000);
 });

@@ -70,4 +70,17 @@ describe('clock-sync', () => {
     for (let i = 4; i < 8; i++) sync.addSample(pong(i * 1000, 20, 20, 0, 10 * TICK_MS));
     expect(sync.serverTickAt(9000)).toBeCloseTo((9000 - 10 * TICK_MS) / TICK_MS, 0);
   });
+
+  it('follows a server that runs slow at the next pong, not once the window forgets', () => {
+    // A room slowed by load: between pongs a second apart it runs 45 ticks instead of 60, so each pong's anchor is
+    // 15 ticks later than the one before. Inputs aimed by an estimate 12 pongs old would be 180 ticks too far ahead.
+    const sync = new ClockSync({ tickRateHz: 60 });
+    let anchor = 0;
+    for (let i = 0; i < 12; i++) {
+      sync.addSample(pong(i * 1000, 20, 20, 0, anchor));
+      if (i < 11) anchor += 15 * TICK_MS;
+    }
+    const now = 11_100;
+    expect(Math.abs(sync.serverTickAt(now) - (now - anchor) / TICK_MS)).toBeLessThan(1);
+  });
 });

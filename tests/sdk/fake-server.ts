@@ -216,6 +216,7 @@ export class FakeServer {
           tickRateHz: 60,
           snapshotRateHz: this.o.snapshotRateHz,
           netMode: 'snapshot',
+          inputDelayTicks: 0,
           scenario: { name: 'fake', description: 'a fake room', params: {}, bounds: BOUNDS },
           snapshotFormat: snapshotFormatSpec(this.format),
           staticBodies: [{ id: 0, shape: { kind: 'box', halfExtents: { x: 100, y: 0.5, z: 100 } }, color: [0.2, 0.2, 0.2], motion: 'static', hidden: false, position: { x: 0, y: -0.5, z: 0 }, rotation: { x: 0, y: 0, z: 0, w: 1 } }],

@@ -62,6 +62,8 @@ export interface HarnessOptions {
   logger?: Logger;
   /** Net mode of the rooms (default: the server's, 'auto'). */
   netMode?: NetModeRequest;
+  /** Input delay predict rooms announce (default: the server's, 0). */
+  inputDelayTicks?: number;
 }
 
 /** A protocol-level client: records every decoded message; decodes and acks snapshots. */
@@ -177,6 +179,7 @@ export async function startHarness(opts: HarnessOptions): Promise<Harness> {
     seats: opts.seats,
     requireSeat: opts.requireSeat,
     netMode: opts.netMode,
+    inputDelayTicks: opts.inputDelayTicks,
   });
   const histories = new Map<string, { records: TickInputRecord[]; hashes: string[] }>();
   const watch = (room: Room): void => {

@@ -12,7 +12,7 @@ import type { WelcomeMessage } from '../../../shared/protocol/server-messages.ts
 import { BotScript } from '../../../shared/sim/bots.ts';
 import { Simulation } from '../../../shared/sim/simulation.ts';
 
-const welcome = { playerId: 1, scenario: { name: 'character-course', description: '', params: {}, bounds: characterCourse.bounds }, netMode: 'predict' } as unknown as WelcomeMessage;
+const welcome = { playerId: 1, scenario: { name: 'character-course', description: '', params: {}, bounds: characterCourse.bounds }, netMode: 'predict', inputDelayTicks: 0 } as unknown as WelcomeMessage;
 
 function link(clock: { ms: number }): PredictLink & { sent: ClientMessage[]; errors: string[]; fellBackWith: string | null } {
   const l = {

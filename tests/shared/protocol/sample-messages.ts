@@ -19,4 +19,5 @@ export const sampleWelcome: WelcomeMessage = {
   resumeGraceMs: 30_000,
   resumed: false,
   netMode: 'snapshot',
+  inputDelayTicks: 0,
 };

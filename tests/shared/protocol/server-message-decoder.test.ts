@@ -50,7 +50,7 @@ describe('server-message-decoder', () => {
     expect(broken((w) => (w.staticBodies = [[{ kind: 'box' }], []]))).toMatch(/welcome.staticBodies.shapes\[0\].halfExtents/);
   });
 
-  it('checks the welcome\'s resume fields, and reports a welcome of another version without reading its fields', () => {
+  it('checks the welcome\'s resume fields and input delay, and reports a welcome of another version without reading its fields', () => {
     const welcome = unpackFrame(encodeServerMessage(sampleWelcome)) as [number, Record<string, unknown>];
     const patched = (patch: (w: Record<string, unknown>) => void) => {
       const copy = structuredClone(welcome);
@@ -61,6 +61,9 @@ describe('server-message-decoder', () => {
     expect(patched((w) => delete w.resumed)).toMatchObject({ ok: false, error: 'welcome.resumed must be true or false' });
     expect(patched((w) => (w.resumeGraceMs = -1))).toMatchObject({ ok: false, error: expect.stringMatching(/welcome.resumeGraceMs/) });
     expect(patched((w) => (w.resumeToken = null))).toMatchObject({ ok: true, message: { resumeToken: null } });
+    expect(patched((w) => (w.inputDelayTicks = 16))).toMatchObject({ ok: false, error: 'welcome.inputDelayTicks must be at most 15, got 16' });
+    expect(patched((w) => delete w.inputDelayTicks)).toMatchObject({ ok: false, error: expect.stringMatching(/welcome.inputDelayTicks must be an integer/) });
+    expect(patched((w) => (w.inputDelayTicks = 2))).toMatchObject({ ok: true, message: { inputDelayTicks: 2 } });
     const old = decodeServerMessage(packValue([ServerOpcode.Welcome, { protocolVersion: 1, playerId: 3 }]));
     expect(old).toEqual({ ok: false, error: `the server speaks protocol 1, this client ${PROTOCOL_VERSION}`, serverVersion: 1 });
   });
