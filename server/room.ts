@@ -19,7 +19,6 @@ import { heldInput, RoomError, type JoinResult, type RoomInfo, type RoomOptions 
 import { RoomPace } from './room-pace.ts';
 import { SnapshotFanOut } from './snapshot-fan-out.ts';
 import { TickClock } from './tick-clock.ts';
-import type { TickPhases } from './tick-phases.ts';
 import { TickTimes } from './monitor/tick-times.ts';
 
 import type { RoomMember, RoomSimulation, WorldFrame } from './room-contracts.ts';

@@ -138,12 +138,8 @@ export class PhysicsWorld {
       track: (body, info, id) => this.track(body, info, id),
       untrack: (handle) => this.untrack(handle),
       bodyByJoltId: (joltId) => this.table.byJoltId(joltId),
-      setNextBodyId: (next) => {
-        this.nextBodyId = next;
-      },
-      setEveryBodyReads: (every) => {
-        this.stateReader.everyBody = every;
-      },
+      setNextBodyId: (next) => void (this.nextBodyId = next),
+      setEveryBodyReads: (every) => void (this.stateReader.everyBody = every),
       gravity: { x: 0, y: 0, z: 0, vec: new J.Vec3(0, 0, 0) }, // the Vec3 is owned by this world; destroyed in destroy()
       tempAllocator: this.joltInterface.GetTempAllocator(),
     };
@@ -539,8 +535,6 @@ export class PhysicsWorld {
   get tempAllocator(): InstanceType<J['TempAllocator']> {
     return this.internals.tempAllocator;
   }
-
-  // ── bulk state ────────────────────────────────────────────────────────────────────────────────────────────
 
   /**
    * Reads every tracked body, in stable-id order, into reused typed arrays: `states` holds BODY_STATE_STRIDE
