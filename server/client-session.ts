@@ -3,7 +3,7 @@
 // MemberSink the room's bytes for this client arrive at. Nothing a client sends reaches the room unvalidated or under
 // another player's id.
 import type { TimerHandle } from '../shared/clock.ts';
-import { ByeReason, decodeClientMessage, encodeServerMessage, ErrorCode, type ClientMessage, type HelloMessage, type ServerMessage } from '../shared/protocol/index.ts';
+import { ByeReason, decodeClientMessage, encodeServerMessage, ErrorCode, NetMode, type ClientMessage, type HelloMessage, type ServerMessage } from '../shared/protocol/index.ts';
 import { admitSeat } from './access/admission.ts';
 import type { ResumeHolder } from './access/resume-tokens.ts';
 import { CloseCode, type ServerConnection } from './connection.ts';
