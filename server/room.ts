@@ -24,6 +24,7 @@ import { TickClock } from './tick-clock.ts';
 import { TickTimes } from './monitor/tick-times.ts';
 
 import type { RoomMember, RoomRecorder, RoomSimulation, WorldFrame } from './room-contracts.ts';
+import type { RoomCarry } from './room-carry.ts';
 
 export type { BodyStates, RoomMember, RoomRecorder, RoomSimulation, WorldFrame } from './room-contracts.ts';
 
@@ -67,6 +68,8 @@ export interface RoomOptions {
   catchUp?: CatchUpGate | null;
   /** A resumed room's players already in the game with their last commands, for predict mode's record stream. */
   predictInputs?: readonly PlayerInputState[];
+  /** A room moving in from another thread goes on from this state; its connected players' members reattach() before start(). */
+  carried?: RoomCarry;
   /** How the room serves its members (decided by net-mode-policy.ts). Default snapshot. */
   netMode?: NetMode;
   /** The mode the room was asked for. Default: netMode. */
@@ -96,6 +99,9 @@ export interface RoomInfo extends PaceReport {
   netMode: NetMode;
   /** Why the room serves snapshots although predict was asked for or allowed (absent otherwise). */
   netModeNote?: string;
+  /** The room worker it runs in, and how often it moved to another one (absent: rooms on the main thread). */
+  worker?: number;
+  moves?: number;
 }
 
 interface Player {
@@ -181,6 +187,7 @@ export class Room implements HostedRoom {
     const initial = sim.readBodyStates();
     this.lastBodyCount = initial.count;
     for (let i = 0; i < initial.count; i++) if ((initial.flags[i] & BodyFlag.Static) !== 0) this.sceneStatics.add(initial.ids[i]);
+    if (opts.carried) this.adoptCarry(opts.carried);
     this.tickClock = new TickClock({
       clock: opts.clock,
       tickRateHz: TICK_RATE_HZ,
@@ -247,7 +254,46 @@ export class Room implements HostedRoom {
   /** Starts ticking (unless empty and pausing when empty). */
   start(): void {
     if (this.closed) return;
-    if (this.players.size > 0 || !(this.opts.pauseWhenEmpty ?? true)) this.tickClock.start();
+    if (this.players.size + this.pendingLeaves.length > 0 || !(this.opts.pauseWhenEmpty ?? true)) this.tickClock.start();
+  }
+
+  /**
+   * Stops the room between two ticks and lets this thread go of it for another to go on with (room-carry.ts): held
+   * sends go out and the log is handed over first, then the room is gone from here without a close notice to anyone.
+   */
+  async handOff(): Promise<RoomCarry> {
+    const sim = this.sim;
+    if (!sim.saveCheckpointBytes) throw new RoomError(ErrorCode.Internal, `room ${this.id}: its simulation cannot checkpoint, so it cannot move`);
+    if (this.closed) throw new RoomError(ErrorCode.RoomNotFound, `room ${this.id} is closed`);
+    this.tickClock.stop();
+    const log = (await this.opts.recorder?.handOff?.()) ?? null;
+    if (this.closed) throw new RoomError(ErrorCode.RoomNotFound, `room ${this.id} closed while moving`);
+    const carry: RoomCarry = {
+      id: this.id, scenario: this.scenarioName, params: this.params, seed: this.seed, netModeRequested: this.netModeRequested,
+      tick: sim.tick, checkpoint: sim.saveCheckpointBytes(), hash: sim.stateHash(), log, predictInputs: this.predictFeed?.inputs() ?? null,
+      players: [...this.players.values()].map((p) => ({ playerId: p.playerId, name: p.name, inWorld: p.inWorld, held: p.member === null, inputs: p.inputs.exportState() })),
+      nextPlayerId: this.nextPlayerId, pendingLeaves: [...this.pendingLeaves], messages: this.gameMessages.waiting(),
+      snapshotAccumulator: this.snapshotAccumulator, sceneStatics: [...this.sceneStatics], lastBodyCount: this.lastBodyCount, cpuSeconds: this.cpuSecondsTotal,
+    };
+    this.closedReason = 'moved to another thread';
+    this.opts.metrics.players.dec(this.players.size);
+    this.players.clear();
+    sim.destroy();
+    this.clearListeners();
+    return carry;
+  }
+
+  private adoptCarry(c: RoomCarry): void {
+    this.sceneStatics.clear();
+    for (const id of c.sceneStatics) this.sceneStatics.add(id);
+    this.lastBodyCount = c.lastBodyCount;
+    this.snapshotAccumulator = c.snapshotAccumulator;
+    this.cpuSecondsTotal = c.cpuSeconds;
+    this.nextPlayerId = c.nextPlayerId;
+    this.pendingLeaves = [...c.pendingLeaves];
+    this.gameMessages.restore(c.messages);
+    for (const p of c.players) this.players.set(p.playerId, { playerId: p.playerId, name: p.name, member: null, inputs: InputBuffer.fromState(p.inputs), inWorld: p.inWorld });
+    this.opts.metrics.players.inc(c.players.length);
   }
 
   /** The room's WASM heap (used and free bytes), or null when closed or the simulation does not say. */
@@ -467,7 +513,7 @@ export class Room implements HostedRoom {
           },
           characters: this.sim.characters(),
         };
-        if (this.opts.recorder?.release) frame.descriptors = this.captureDescriptors(frame.bodies);
+        if (this.opts.recorder?.release) frame.descriptors = this.snapshots.describeDynamic(frame.bodies);
       }
     }
     return () => {
@@ -478,17 +524,6 @@ export class Room implements HostedRoom {
       if (frame) for (const p of members) this.safely(p, () => p.member.deliverFrame(frame));
       for (const id of removed) this.sceneStatics.delete(id); // its id may be reused
     };
-  }
-
-  private captureDescriptors(bodies: WorldFrame['bodies']): Map<number, BodyDescriptor> {
-    const out = new Map<number, BodyDescriptor>();
-    for (let i = 0; i < bodies.count; i++) {
-      const id = bodies.ids[i];
-      if (this.isSceneStatic(id)) continue;
-      const d = this.sim.bodyDescriptor(id);
-      if (d) out.set(id, d);
-    }
-    return out;
   }
 
   // A member that throws while taking a delivery is removed; the room and the other members carry on.
@@ -544,10 +579,14 @@ export class Room implements HostedRoom {
     this.sim.destroy();
     this.opts.logger.info({ room: this.id, reason, tick }, 'room closed');
     for (const fn of this.closeListeners) fn(reason);
-    // Nothing outlives the room through its listeners (they close over sessions, managers, recorders).
+    this.clearListeners();
+    this.pendingLeaves = [];
+  }
+
+  // Nothing outlives the room through its listeners (they close over sessions, managers, recorders).
+  private clearListeners(): void {
     this.tickListeners.clear();
     this.emptyListeners.clear();
     this.closeListeners.clear();
-    this.pendingLeaves = [];
   }
 }

@@ -10,13 +10,14 @@ import type { Logger } from '../logger.ts';
 import { RoomError } from '../room.ts';
 import type { RoomSpec } from '../room-manager.ts';
 import { RemoteRoom, type RoomThreadLink } from './remote-room.ts';
-import { forEachSend, type EnteredRoom, type FromWorker, type MemberTraffic, type OpenedRoom, type ToWorker, type WorkerInit } from './worker-protocol.ts';
+import { forEachSend, type EnteredRoom, type FromWorker, type MemberTraffic, type MovingRoom, type OpenedRoom, type ToWorker, type WorkerInit } from './worker-protocol.ts';
 import { siblingModuleUrl } from '../package-root.ts';
 
 /** Members of every thread share one numbering (a member id is never reused in a process). */
 let nextMemberId = 1;
 
-interface Route {
+/** Where a member's bytes go on this thread, and the room and player it is in. */
+export interface MemberRoute {
   sink: MemberSink;
   room: RemoteRoom;
   playerId: number;
@@ -41,7 +42,7 @@ export class RoomThread implements RoomThreadLink {
   private readonly logger: Logger;
   private readonly onDied: (thread: RoomThread, why: string) => void;
   private readonly pending = new Map<number, Pending>();
-  private readonly routes = new Map<number, Route>();
+  private readonly routes = new Map<number, MemberRoute>();
   private readonly backed = new Set<number>();
   private nextReq = 1;
   private traffic = emptyTraffic();
@@ -82,6 +83,33 @@ export class RoomThread implements RoomThreadLink {
     const room = new RemoteRoom(this, this.index, opened.info, opened.recordingPath);
     this.rooms.set(room.id, room);
     return room;
+  }
+
+  /** Stops a room of this worker between two ticks and takes it out, with its state and members (a room moving). */
+  exportRoom(roomId: string): Promise<MovingRoom> {
+    this.flushTraffic();
+    return this.request({ t: 'export', req: 0, room: roomId }) as Promise<MovingRoom>;
+  }
+
+  /** Gives up a moved-out room and its members' routes (same member ids on the thread that adopts them). */
+  releaseRoom(room: RemoteRoom): Array<[number, MemberRoute]> {
+    this.rooms.delete(room.id);
+    const out: Array<[number, MemberRoute]> = [];
+    for (const [member, r] of this.routes) if (r.room === room) out.push([member, r]);
+    for (const [member] of out) this.unroute(member);
+    return out;
+  }
+
+  /** Takes a room moving in and its members' routes, then has the worker go on with it. */
+  async importRoom(room: RemoteRoom, routes: ReadonlyArray<[number, MemberRoute]>, moving: MovingRoom): Promise<OpenedRoom> {
+    for (const [member, r] of routes) this.routes.set(member, r);
+    this.rooms.set(room.id, room);
+    try {
+      return (await this.request({ t: 'import', req: 0, moving })) as OpenedRoom;
+    } catch (error) {
+      if (this.rooms.get(room.id) === room) this.releaseRoom(room);
+      throw error;
+    }
   }
 
   /** The worker's metrics as prom-client JSON (null when it does not answer within `timeoutMs`). */
@@ -167,12 +195,15 @@ export class RoomThread implements RoomThreadLink {
   private scheduleFlush(): void {
     if (this.flushPending) return;
     this.flushPending = true;
-    setImmediate(() => {
-      this.flushPending = false;
-      const traffic = this.traffic;
-      this.traffic = emptyTraffic();
-      if (traffic.inputs.length + traffic.messages.length + traffic.acks.length + traffic.pressure.length + traffic.netModes.length > 0) this.post({ t: 'traffic', traffic });
-    });
+    setImmediate(() => this.flushTraffic());
+  }
+
+  /** Posts what members queued now (a room about to move: nothing of it may trail behind its export). */
+  flushTraffic(): void {
+    this.flushPending = false;
+    const traffic = this.traffic;
+    this.traffic = emptyTraffic();
+    if (traffic.inputs.length + traffic.messages.length + traffic.acks.length + traffic.pressure.length + traffic.netModes.length > 0) this.post({ t: 'traffic', traffic });
   }
 
   private receive(msg: FromWorker): void {

@@ -8,21 +8,25 @@ import type { Clock } from '../../shared/clock.ts';
 import { ErrorCode } from '../../shared/protocol/opcodes.ts';
 import { CatchUpBudget } from '../catch-up-budget.ts';
 import { DeliveryKind, type MemberSink, type Seat } from '../hosted-room.ts';
-import { enterRoom } from '../local-seat.ts';
+import { enterRoom, seatOf } from '../local-seat.ts';
+import { DeliveringMember } from '../member-delivery.ts';
+import { SnapshotEncoder } from '../../shared/protocol/index.ts';
+import type { Simulation } from '../../shared/sim/simulation.ts';
+import type { RecordingFactory } from '../room-factory.ts';
 import type { Logger } from '../logger.ts';
 import type { ServerMetrics } from '../metrics.ts';
-import { openRoom } from '../open-room.ts';
+import { openRoom, roomAround, type OpenRoomOptions } from '../open-room.ts';
 import { RoomError, type Room } from '../room.ts';
-import type { RoomFactory } from '../room-manager.ts';
+import type { RoomFactory, RoomSimulationBuild } from '../room-manager.ts';
 import { OVERLOADED_NICENESS, setThreadNiceness } from './thread-priority.ts';
-import { ByteBatcher, STATUS_INTERVAL_MS, type FromWorker, type RoomStatus, type ToWorker, type WorkerRoomConfig } from './worker-protocol.ts';
+import { ByteBatcher, STATUS_INTERVAL_MS, type CarriedMember, type FromWorker, type MovingRoom, type OpenedRoom, type RoomStatus, type ToWorker, type WorkerRoomConfig } from './worker-protocol.ts';
 
 /** How a worker posts to the main thread (`transfer`: buffers whose ownership moves with the message). */
 export type PostToMain = (msg: FromWorker, transfer?: ArrayBuffer[]) => void;
 
 /** Options of WorkerRooms. */
 export interface WorkerRoomsOptions {
-  factory: RoomFactory;
+  factory: RoomFactory & RecordingFactory;
   clock: Clock;
   metrics: ServerMetrics;
   logger: Logger;
@@ -63,8 +67,9 @@ class RemoteSink implements MemberSink {
 
 interface MemberEntry {
   room: Room;
-  seat: Seat;
+  seat: Omit<Seat, 'welcome'>;
   sink: RemoteSink;
+  delivering: DeliveringMember;
 }
 
 /** One room's counters at the start of the current status window. */
@@ -126,7 +131,7 @@ export class WorkerRooms {
         if (!room || room.closed) throw new RoomError(ErrorCode.RoomNotFound, `room ${msg.room} is closed`);
         const sink = new RemoteSink(msg.member, this);
         const seat = enterRoom(room, sink, msg.entry, this.opts.metrics);
-        this.members.set(msg.member, { room, seat, sink });
+        this.members.set(msg.member, { room, seat, sink, delivering: seat.member });
         this.reply(msg.req, { playerId: seat.playerId, welcome: seat.welcome });
         return;
       }
@@ -165,6 +170,12 @@ export class WorkerRooms {
         for (let i = 0; i < netModes.length; i += 2) this.members.get(netModes[i])?.seat.setNetMode(netModes[i + 1] === 1 ? NetMode.Predict : NetMode.Snapshot);
         return;
       }
+      case 'export':
+        void this.exportRoom(msg.req, msg.room);
+        return;
+      case 'import':
+        void this.importRoom(msg.req, msg.moving);
+        return;
       case 'metrics':
         void this.opts.metrics.registry.getMetricsAsJSON().then(
           (json) => this.reply(msg.req, json),
@@ -177,37 +188,94 @@ export class WorkerRooms {
   private async open(req: number, id: string, scenario: string, params: Readonly<Record<string, number>>, seed: number | string, netMode: NetModeRequest | undefined): Promise<void> {
     try {
       if (this.rooms.has(id)) throw new RoomError(ErrorCode.Internal, `room ${id} is already open in this worker`);
-      const { config } = this.opts;
-      const room = await openRoom(
-        { id, scenario, params, seed, netMode },
-        {
-          factory: this.opts.factory,
-          clock: this.opts.clock,
-          metrics: this.opts.metrics,
-          logger: this.opts.logger,
-          snapshotRateHz: config.snapshotRateHz,
-          maxClientsPerRoom: config.maxClientsPerRoom,
-          maxCatchUpTicks: config.maxCatchUpTicks,
-          maxInputLeadTicks: config.maxInputLeadTicks,
-          pauseWhenEmpty: config.pauseWhenEmpty,
-          catchUp: this.catchUp,
-        },
-      );
-      this.rooms.set(id, room);
-      room.onTick(() => {
-        this.ticks.set(id, room.sim.tick);
-        this.scheduleFlush();
-      });
-      room.onClose((reason) => {
-        this.rooms.delete(id);
-        this.windows.delete(id);
-        this.ticks.delete(id);
-        for (const [member, m] of this.members) if (m.room === room) this.members.delete(member);
-        this.postInOrder({ t: 'closed', room: id, reason });
-      });
+      const room = await openRoom({ id, scenario, params, seed, netMode }, { factory: this.opts.factory, ...this.roomOptions() });
+      this.host(room);
       room.start();
-      this.reply(req, { info: room.info(), recordingPath: this.opts.factory.recordingPath?.(id) ?? null });
+      this.reply(req, { info: room.info(), recordingPath: this.opts.factory.recordingPath(id) });
     } catch (error) {
+      this.fail(req, error);
+    }
+  }
+
+  private roomOptions(): Omit<OpenRoomOptions, 'factory'> {
+    const { config } = this.opts;
+    return {
+      clock: this.opts.clock,
+      metrics: this.opts.metrics,
+      logger: this.opts.logger,
+      snapshotRateHz: config.snapshotRateHz,
+      maxClientsPerRoom: config.maxClientsPerRoom,
+      maxCatchUpTicks: config.maxCatchUpTicks,
+      maxInputLeadTicks: config.maxInputLeadTicks,
+      pauseWhenEmpty: config.pauseWhenEmpty,
+      catchUp: this.catchUp,
+    };
+  }
+
+  private host(room: Room): void {
+    const id = room.id;
+    this.rooms.set(id, room);
+    room.onTick(() => {
+      this.ticks.set(id, room.sim.tick);
+      this.scheduleFlush();
+    });
+    room.onClose((reason) => {
+      this.forgetRoom(room);
+      this.postInOrder({ t: 'closed', room: id, reason });
+    });
+  }
+
+  private forgetRoom(room: Room): void {
+    this.rooms.delete(room.id);
+    this.windows.delete(room.id);
+    this.ticks.delete(room.id);
+    for (const [member, m] of this.members) if (m.room === room) this.members.delete(member);
+  }
+
+  // Stops the room between two ticks; every byte it sent goes out before the reply that hands it over.
+  private async exportRoom(req: number, id: string): Promise<void> {
+    try {
+      const room = this.rooms.get(id);
+      if (!room) throw new RoomError(ErrorCode.RoomNotFound, `room ${id} is not open in this worker`);
+      const entries = [...this.members].filter(([, m]) => m.room === room);
+      const carry = await room.handOff();
+      const members: CarriedMember[] = entries.map(([member, m]) => ({ member, playerId: m.seat.playerId, predict: m.delivering.predictState }));
+      this.forgetRoom(room);
+      this.reply(req, { carry, members } satisfies MovingRoom);
+    } catch (error) {
+      this.fail(req, error);
+    }
+  }
+
+  // Goes on with a room exported by another worker: the simulation from its checkpoint (checked against its hash), the
+  // log appended to where it stopped, the members served from the next tick without a new welcome.
+  private async importRoom(req: number, moving: MovingRoom): Promise<void> {
+    const { carry } = moving;
+    let built: (RoomSimulationBuild & { sim: Simulation }) | null = null;
+    try {
+      if (this.rooms.has(carry.id)) throw new RoomError(ErrorCode.Internal, `room ${carry.id} is already open in this worker`);
+      const factory: RecordingFactory = this.opts.factory;
+      const b = await factory.createSimulation(carry.scenario, carry.params, carry.seed);
+      built = b;
+      b.sim.restoreCheckpointBytes(carry.checkpoint);
+      if (b.sim.tick !== carry.tick || b.sim.stateHash() !== carry.hash) throw new Error(`room ${carry.id}: the restored checkpoint is at tick ${b.sim.tick} with hash ${b.sim.stateHash()}, expected tick ${carry.tick} with ${carry.hash}`);
+      const spec = { id: carry.id, scenario: carry.scenario, params: carry.params, seed: carry.seed, netMode: carry.netModeRequested };
+      const recorder = carry.log ? await factory.continueRecording({ ...spec, sim: b.sim }, carry.log) : null;
+      const room = roomAround(spec, b, recorder, this.roomOptions(), carry.predictInputs ?? undefined, carry);
+      built = null; // the room owns the simulation now
+      for (const c of moving.members) {
+        const sink = new RemoteSink(c.member, this);
+        const delivering = new DeliveringMember(sink, room.snapshots, this.opts.metrics, room.predictFeed);
+        delivering.encoder = new SnapshotEncoder(room.snapshots.format);
+        delivering.continueStream(c.predict);
+        if (room.reattach(c.playerId, delivering) === null) continue;
+        this.members.set(c.member, { room, seat: seatOf(room, c.playerId, delivering), sink, delivering });
+      }
+      this.host(room);
+      room.start();
+      this.reply(req, { info: room.info(), recordingPath: factory.recordingPath(carry.id) } satisfies OpenedRoom);
+    } catch (error) {
+      built?.sim.destroy();
       this.fail(req, error);
     }
   }

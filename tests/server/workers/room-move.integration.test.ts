@@ -1,0 +1,111 @@
+// A room moved between room workers mid-session (WorkerPool.moveRoom) on loopback: its players stay connected, a
+// predicting client goes on confirming the server's hashes with no desync or resync, a snapshot client goes on
+// getting snapshots, /api/rooms and /metrics show the moves, and the one input log replays with every hash matching.
+import { mkdtemp, readdir, rm } from 'node:fs/promises';
+import { join } from 'node:path';
+import { tmpdir } from 'node:os';
+import { afterEach, describe, expect, it } from 'vitest';
+import { nodePredictOptions } from '../../../cli/predict-options.ts';
+import { replayLog } from '../../../cli/replay-session.ts';
+import { connect, type NetClient } from '../../../sdk/index.ts';
+import { silentLogger } from '../../../server/logger.ts';
+import { createMetrics } from '../../../server/metrics.ts';
+import { startServer, type RunningServer } from '../../../server/start-server.ts';
+
+let server: RunningServer | null = null;
+let dir: string | null = null;
+const clients: NetClient[] = [];
+afterEach(async () => {
+  for (const c of clients.splice(0)) c.close();
+  await server?.close('test over');
+  server = null;
+  if (dir) await rm(dir, { recursive: true, force: true });
+  dir = null;
+});
+
+async function waitUntil(what: string, timeoutMs: number, done: () => boolean): Promise<void> {
+  const deadline = performance.now() + timeoutMs;
+  while (!done()) {
+    if (performance.now() > deadline) throw new Error(`timed out waiting for ${what}`);
+    await new Promise((r) => setTimeout(r, 25));
+  }
+}
+
+describe('moving a room between room workers', () => {
+  it('keeps its players, their predict stream and its log across two moves', async () => {
+    dir = await mkdtemp(join(tmpdir(), 'taos-room-move-'));
+    const recordDir = join(dir, 'rec');
+    server = await startServer({
+      port: 0,
+      roomWorkers: 2,
+      scenario: 'character-course',
+      recordDir,
+      recordHashEveryTicks: 1,
+      logger: silentLogger(),
+      metrics: createMetrics({ processMetrics: false }),
+      clientDir: join(dir, 'no-client'),
+    });
+    const pool = server.game.workers!;
+    const pred = connect(server.wsUrl, { name: 'pred', predict: nodePredictOptions(), reconnect: false });
+    const snap = connect(server.wsUrl, { name: 'snap', reconnect: false });
+    clients.push(pred, snap);
+    await Promise.all([pred.whenConnected(), snap.whenConnected()]);
+    pred.setInput({ moveX: 0, moveZ: 127, yaw: 2000, pitch: 0, buttons: 0 });
+    snap.setInput({ moveX: 50, moveZ: 100, yaw: 9000, pitch: 0, buttons: 2 });
+    await waitUntil('confirmed hashes before the move', 30_000, () => (pred.stats().prediction?.hashesVerified ?? 0) >= 3);
+
+    const home = pool.workers().find((t) => t.rooms.has('default'))!.index;
+    const first = await pool.moveRoom('default', { reason: 'test moves it' });
+    expect(first).toMatchObject({ from: home, reason: 'test moves it' });
+    expect(first.to).not.toBe(home);
+    expect(pool.workers().find((t) => t.rooms.has('default'))!.index).toBe(first.to);
+    const verified = pred.stats().prediction!.hashesVerified;
+    const snapshots = snap.stats().snapshots;
+    await waitUntil('confirmed hashes after the move', 30_000, () => pred.stats().prediction!.hashesVerified >= verified + 3 && snap.stats().snapshots > snapshots + 5);
+
+    // Back again, and on: the room's tick goes on from where each move stopped it.
+    const second = await pool.moveRoom('default', { to: home });
+    expect(second).toMatchObject({ from: first.to, to: home });
+    expect(second.tick).toBeGreaterThan(first.tick);
+    const again = pred.stats().prediction!.hashesVerified;
+    await waitUntil('confirmed hashes after moving back', 30_000, () => pred.stats().prediction!.hashesVerified >= again + 3);
+
+    expect(pred.stats().prediction).toMatchObject({ mode: 'predict', desyncs: 0, resyncs: 0 });
+    expect(pred.stats().reconnects).toBe(0);
+    expect(snap.stats().reconnects).toBe(0);
+    expect(pred.playerId).toBe(1);
+    const own = pred.predicted()!.characters.find((c) => c.playerId === pred.playerId)!;
+    expect(Math.hypot(own.velocity.x, own.velocity.z)).toBeGreaterThan(1);
+
+    const listed = (await (await fetch(`${server.url}api/rooms`)).json()) as { rooms: Array<{ id: string; worker?: number; moves?: number; clients: number }> };
+    expect(listed.rooms.find((r) => r.id === 'default')).toMatchObject({ worker: home, moves: 2, clients: 2 });
+    const metrics = await (await fetch(`${server.url}metrics`)).text();
+    expect(metrics).toMatch(/taos_room_moves_total\{trigger="request"\} 2/);
+    expect(metrics).toMatch(/taos_room_move_pause_seconds_count 2/);
+
+    for (const c of clients.splice(0)) c.close();
+    await server.close('test over');
+    server = null;
+    const logs = (await readdir(recordDir)).filter((n) => n.endsWith('.taoslog'));
+    expect(logs).toHaveLength(1);
+    const report = await replayLog(join(recordDir, logs[0]));
+    expect(report).toMatchObject({ status: 'ok', log: 'complete' });
+    expect(report.ticks).toBeGreaterThan(second.tick);
+    expect(report.hashesChecked).toBeGreaterThanOrEqual(report.ticks);
+  }, 120_000);
+
+  it('refuses to move a room to the worker it runs in and leaves it running', async () => {
+    dir = await mkdtemp(join(tmpdir(), 'taos-room-move-'));
+    server = await startServer({ port: 0, roomWorkers: 2, scenario: 'character-course', logger: silentLogger(), metrics: createMetrics({ processMetrics: false }), clientDir: join(dir, 'no-client') });
+    const pool = server.game.workers!;
+    const client = connect(server.wsUrl, { name: 'stays', reconnect: false });
+    clients.push(client);
+    await client.whenConnected();
+    const home = pool.workers().find((t) => t.rooms.has('default'))!.index;
+    await expect(pool.moveRoom('default', { to: home })).rejects.toThrow(/already runs in worker/);
+    await expect(pool.moveRoom('nowhere')).rejects.toThrow(/not open in a room worker/);
+    const snapshots = client.stats().snapshots;
+    await waitUntil('snapshots from the room that stayed', 10_000, () => client.stats().snapshots > snapshots + 5);
+    expect(server.game.listRooms().find((r) => r.id === 'default')).toMatchObject({ worker: home, moves: 0 });
+  }, 60_000);
+});
