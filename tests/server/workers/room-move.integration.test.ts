@@ -108,4 +108,36 @@ describe('moving a room between room workers', () => {
     await waitUntil('snapshots from the room that stayed', 10_000, () => client.stats().snapshots > snapshots + 5);
     expect(server.game.listRooms().find((r) => r.id === 'default')).toMatchObject({ worker: home, moves: 0 });
   }, 60_000);
+  it('moves the room that proved heavier than estimated away from neighbours missing their budget, keeping its player', async () => {
+    dir = await mkdtemp(join(tmpdir(), 'taos-room-move-'));
+    server = await startServer({ port: 0, roomWorkers: 2, roomMoveCheckEveryMs: 0, scenario: 'character-course', logger: silentLogger(), metrics: createMetrics({ processMetrics: false }), clientDir: join(dir, 'no-client') });
+    const pool = server.game.workers!;
+    for (const roomId of ['heavy', 'light']) {
+      const created = await fetch(`${server.url}api/rooms`, { method: 'POST', body: JSON.stringify({ roomId, scenario: 'character-course' }) });
+      expect(created.status).toBe(201);
+    }
+    const where = (id: string): number => pool.workers().find((t) => t.rooms.has(id))!.index;
+    if (where('light') !== where('heavy')) await pool.moveRoom('light', { to: where('heavy') });
+    const crowded = where('heavy');
+    const player = connect(server.wsUrl, { name: 'in-heavy', room: 'heavy', reconnect: false });
+    clients.push(player);
+    await player.whenConnected();
+    // The worker's own figures say nothing is wrong; made-up ones (overwritten by its next report) say the heavy room
+    // costs 11 ms per tick against an estimate of 0.4 and the light room beside it gives up ticks.
+    expect(await pool.rebalance()).toBeNull();
+    const rooms = pool.workers().find((t) => t.index === crowded)!.rooms;
+    const status = (id: string, tickCpuMs: number, slow: boolean) => ({ id, tick: 1, clients: 0, bodies: 0, heap: null, ticksPerSecond: slow ? 40 : 60, tickCpuMs, slow, tickMsP99: null, tickCpuMsP99: null, tickGapMsMax: null, skippedTicks: 0, missedInputTicks: [] });
+    rooms.get('heavy')!.reported(status('heavy', 11, true));
+    rooms.get('light')!.reported(status('light', 2, true));
+    const plan = await pool.rebalance();
+    expect(plan).toMatchObject({ room: 'heavy', from: crowded });
+    expect(plan!.to).not.toBe(crowded);
+    expect(where('heavy')).toBe(plan!.to);
+    expect(where('light')).toBe(crowded);
+    const snapshots = player.stats().snapshots;
+    await waitUntil('snapshots from the moved room', 10_000, () => player.stats().snapshots > snapshots + 5);
+    expect(player.stats().reconnects).toBe(0);
+    const metrics = await (await fetch(`${server.url}metrics`)).text();
+    expect(metrics).toMatch(/taos_room_moves_total\{trigger="policy"\} 1/);
+  }, 60_000);
 });
