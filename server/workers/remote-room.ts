@@ -41,6 +41,7 @@ export class RemoteRoom implements HostedRoom {
   readonly id: string;
   readonly scenarioName: string;
   readonly params: Readonly<Record<string, number>>;
+  readonly seed: number | string;
   /** The index in the pool of the worker it runs in (changes when it moves). */
   workerIndex: number;
   /** Times it moved to another worker, and the last move. */
@@ -61,7 +62,8 @@ export class RemoteRoom implements HostedRoom {
 
   readonly recordingPath: string | null;
 
-  constructor(thread: RoomThreadLink, workerIndex: number, opened: RoomInfo, recordingPath: string | null = null) {
+  constructor(thread: RoomThreadLink, workerIndex: number, opened: RoomInfo, seed: number | string, recordingPath: string | null = null) {
+    this.seed = seed;
     this.recordingPath = recordingPath;
     this.thread = thread;
     this.workerIndex = workerIndex;

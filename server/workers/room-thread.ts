@@ -80,7 +80,7 @@ export class RoomThread implements RoomThreadLink {
   /** Opens a room in this worker. */
   async open(spec: RoomSpec): Promise<RemoteRoom> {
     const opened = (await this.request({ t: 'open', req: 0, ...spec })) as OpenedRoom;
-    const room = new RemoteRoom(this, this.index, opened.info, opened.recordingPath);
+    const room = new RemoteRoom(this, this.index, opened.info, spec.seed, opened.recordingPath);
     this.rooms.set(room.id, room);
     return room;
   }
@@ -89,6 +89,16 @@ export class RoomThread implements RoomThreadLink {
   exportRoom(roomId: string): Promise<MovingRoom> {
     this.flushTraffic();
     return this.request({ t: 'export', req: 0, room: roomId }) as Promise<MovingRoom>;
+  }
+
+  /** Has the worker build a simulation for a room about to move in (before the room stops where it runs). */
+  async prepareRoom(room: RemoteRoom): Promise<void> {
+    await this.request({ t: 'prepare', req: 0, room: room.id, scenario: room.scenarioName, params: room.params, seed: room.seed });
+  }
+
+  /** Drops what prepareRoom built (the move did not happen). */
+  discardPrepared(roomId: string): void {
+    this.post({ t: 'discard', room: roomId });
   }
 
   /** Gives up a moved-out room and its members' routes (same member ids on the thread that adopts them). */

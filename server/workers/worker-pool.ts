@@ -119,15 +119,19 @@ export class WorkerPool implements RoomHost {
     const reason = opts.reason ?? 'requested';
     this.moving = true;
     try {
+      // The new worker builds the room's simulation (a fresh Jolt module) while the room still runs where it is.
+      await to.prepareRoom(room);
       const started = performance.now();
       room.beginMove();
       let moving: MovingRoom;
       try {
         moving = await from.exportRoom(roomId);
       } catch (error) {
+        to.discardPrepared(roomId);
         room.endMove(from, from.index, null);
         throw error;
       }
+      const exportedMs = performance.now() - started;
       const routes = from.releaseRoom(room);
       try {
         await to.importRoom(room, routes, moving);
@@ -148,11 +152,16 @@ export class WorkerPool implements RoomHost {
       this.movedAt.set(roomId, performance.now());
       this.moveMetrics?.moves.inc({ trigger: opts.trigger ?? 'request' });
       this.moveMetrics?.pause.observe(summary.pauseMs / 1000);
-      this.opts.logger.info({ room: roomId, ...summary, pauseMs: Math.round(summary.pauseMs * 10) / 10, players: moving.members.length, recording: moving.carry.log?.path ?? null }, 'room moved to another worker');
+      this.opts.logger.info({ room: roomId, ...summary, pauseMs: Math.round(summary.pauseMs * 10) / 10, exportMs: Math.round(exportedMs * 10) / 10, players: moving.members.length, recording: moving.carry.log?.path ?? null }, 'room moved to another worker');
       return summary;
     } finally {
       this.moving = false;
     }
+  }
+
+  /** Whether a room is moving now (one at a time). */
+  get isMoving(): boolean {
+    return this.moving;
   }
 
   /** Applies the move policy once (the pool does so on its own every moveCheckEveryMs); the move made, or null. */

@@ -74,6 +74,10 @@ export type ToWorker =
   | { t: 'close'; req: number; room: string; reason: string }
   | { t: 'traffic'; traffic: MemberTraffic }
   | { t: 'metrics'; req: number }
+  /** Build a fresh simulation for a room about to move in (the slow part of a move, done before the room stops). */
+  | { t: 'prepare'; req: number; room: string; scenario: string; params: Readonly<Record<string, number>>; seed: number | string }
+  /** Drop a prepared simulation (the move did not happen). */
+  | { t: 'discard'; room: string }
   /** Stop a room between two ticks and hand it back (answers a MovingRoom; the room is gone from the worker). */
   | { t: 'export'; req: number; room: string }
   /** Go on with a room another worker exported (answers an OpenedRoom). */

@@ -86,6 +86,8 @@ export class WorkerRooms {
   private readonly rooms = new Map<string, Room>();
   private readonly members = new Map<number, MemberEntry>();
   private readonly windows = new Map<string, Window>();
+  /** Simulations built for rooms about to move in, by room id. */
+  private readonly prepared = new Map<string, Promise<RoomSimulationBuild & { sim: Simulation }>>();
   private readonly out = new ByteBatcher();
   private readonly ticks = new Map<string, number>();
   private flushPending = false;
@@ -168,6 +170,26 @@ export class WorkerRooms {
           if (m) m.sink.backed = pressure[i + 1] === 1;
         }
         for (let i = 0; i < netModes.length; i += 2) this.members.get(netModes[i])?.seat.setNetMode(netModes[i + 1] === 1 ? NetMode.Predict : NetMode.Snapshot);
+        return;
+      }
+      case 'prepare': {
+        const factory: RecordingFactory = this.opts.factory;
+        const built = factory.createSimulation(msg.scenario, msg.params, msg.seed);
+        void this.prepared.get(msg.room)?.then((b) => b.sim.destroy(), () => undefined);
+        this.prepared.set(msg.room, built);
+        built.then(
+          () => this.reply(msg.req, null),
+          (error: unknown) => {
+            if (this.prepared.get(msg.room) === built) this.prepared.delete(msg.room);
+            this.fail(msg.req, error);
+          },
+        );
+        return;
+      }
+      case 'discard': {
+        const built = this.prepared.get(msg.room);
+        this.prepared.delete(msg.room);
+        void built?.then((b) => b.sim.destroy(), () => undefined);
         return;
       }
       case 'export':
@@ -255,7 +277,9 @@ export class WorkerRooms {
     try {
       if (this.rooms.has(carry.id)) throw new RoomError(ErrorCode.Internal, `room ${carry.id} is already open in this worker`);
       const factory: RecordingFactory = this.opts.factory;
-      const b = await factory.createSimulation(carry.scenario, carry.params, carry.seed);
+      const ready = this.prepared.get(carry.id);
+      this.prepared.delete(carry.id);
+      const b = await (ready ?? factory.createSimulation(carry.scenario, carry.params, carry.seed));
       built = b;
       b.sim.restoreCheckpointBytes(carry.checkpoint);
       if (b.sim.tick !== carry.tick || b.sim.stateHash() !== carry.hash) throw new Error(`room ${carry.id}: the restored checkpoint is at tick ${b.sim.tick} with hash ${b.sim.stateHash()}, expected tick ${carry.tick} with ${carry.hash}`);

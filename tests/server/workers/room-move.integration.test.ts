@@ -1,13 +1,14 @@
 // A room moved between room workers mid-session (WorkerPool.moveRoom) on loopback: its players stay connected, a
 // predicting client goes on confirming the server's hashes with no desync or resync, a snapshot client goes on
 // getting snapshots, /api/rooms and /metrics show the moves, and the one input log replays with every hash matching.
-import { mkdtemp, readdir, rm } from 'node:fs/promises';
+import { mkdtemp, readdir, readFile, rm } from 'node:fs/promises';
 import { join } from 'node:path';
 import { tmpdir } from 'node:os';
 import { afterEach, describe, expect, it } from 'vitest';
 import { nodePredictOptions } from '../../../cli/predict-options.ts';
 import { replayLog } from '../../../cli/replay-session.ts';
 import { connect, type NetClient } from '../../../sdk/index.ts';
+import { readLogBytes } from '../../../server/log/index.ts';
 import { silentLogger } from '../../../server/logger.ts';
 import { createMetrics } from '../../../server/metrics.ts';
 import { startServer, type RunningServer } from '../../../server/start-server.ts';
@@ -52,7 +53,7 @@ describe('moving a room between room workers', () => {
     await Promise.all([pred.whenConnected(), snap.whenConnected()]);
     pred.setInput({ moveX: 0, moveZ: 127, yaw: 2000, pitch: 0, buttons: 0 });
     snap.setInput({ moveX: 50, moveZ: 100, yaw: 9000, pitch: 0, buttons: 2 });
-    await waitUntil('confirmed hashes before the move', 30_000, () => (pred.stats().prediction?.hashesVerified ?? 0) >= 3);
+    await waitUntil('confirmed hashes before the move', 60_000, () => (pred.stats().prediction?.hashesVerified ?? 0) >= 3);
 
     const home = pool.workers().find((t) => t.rooms.has('default'))!.index;
     const first = await pool.moveRoom('default', { reason: 'test moves it' });
@@ -70,12 +71,11 @@ describe('moving a room between room workers', () => {
     const again = pred.stats().prediction!.hashesVerified;
     await waitUntil('confirmed hashes after moving back', 30_000, () => pred.stats().prediction!.hashesVerified >= again + 3);
 
+    console.log(`room move: pauses ${first.pauseMs.toFixed(1)} ms and ${second.pauseMs.toFixed(1)} ms at ticks ${first.tick} and ${second.tick}`);
     expect(pred.stats().prediction).toMatchObject({ mode: 'predict', desyncs: 0, resyncs: 0 });
     expect(pred.stats().reconnects).toBe(0);
     expect(snap.stats().reconnects).toBe(0);
     expect(pred.playerId).toBe(1);
-    const own = pred.predicted()!.characters.find((c) => c.playerId === pred.playerId)!;
-    expect(Math.hypot(own.velocity.x, own.velocity.z)).toBeGreaterThan(1);
 
     const listed = (await (await fetch(`${server.url}api/rooms`)).json()) as { rooms: Array<{ id: string; worker?: number; moves?: number; clients: number }> };
     expect(listed.rooms.find((r) => r.id === 'default')).toMatchObject({ worker: home, moves: 2, clients: 2 });
@@ -92,9 +92,16 @@ describe('moving a room between room workers', () => {
     expect(report).toMatchObject({ status: 'ok', log: 'complete' });
     expect(report.ticks).toBeGreaterThan(second.tick);
     expect(report.hashesChecked).toBeGreaterThanOrEqual(report.ticks);
+    // Both players' own commands went on being applied across the moves (a held player would stand still).
+    const records = readLogBytes(new Uint8Array(await readFile(join(recordDir, logs[0])))).entries.flatMap((e) => (e.type === 'tick' && e.record.tick >= first.tick - 30 && e.record.tick <= second.tick + 30 ? [e.record] : []));
+    expect(records).toHaveLength(second.tick - first.tick + 61);
+    for (const r of records) {
+      expect(r.commands.find((c) => c.playerId === pred.playerId)?.input).toMatchObject({ moveZ: 127, yaw: 2000 });
+      expect(r.commands.find((c) => c.playerId === snap.playerId)?.input).toMatchObject({ moveX: 50, moveZ: 100, buttons: 2 });
+    }
   }, 120_000);
 
-  it('refuses to move a room to the worker it runs in and leaves it running', async () => {
+  it('moves a room over the HTTP API and refuses moves it cannot make, leaving the room running', async () => {
     dir = await mkdtemp(join(tmpdir(), 'taos-room-move-'));
     server = await startServer({ port: 0, roomWorkers: 2, scenario: 'character-course', logger: silentLogger(), metrics: createMetrics({ processMetrics: false }), clientDir: join(dir, 'no-client') });
     const pool = server.game.workers!;
@@ -104,9 +111,21 @@ describe('moving a room between room workers', () => {
     const home = pool.workers().find((t) => t.rooms.has('default'))!.index;
     await expect(pool.moveRoom('default', { to: home })).rejects.toThrow(/already runs in worker/);
     await expect(pool.moveRoom('nowhere')).rejects.toThrow(/not open in a room worker/);
-    const snapshots = client.stats().snapshots;
-    await waitUntil('snapshots from the room that stayed', 10_000, () => client.stats().snapshots > snapshots + 5);
+    const move = (body: string, id = 'default') => fetch(`${server!.url}api/rooms/${id}/move`, { method: 'POST', body });
+    const same = await move(JSON.stringify({ worker: home }));
+    expect(same.status).toBe(409);
+    expect(await same.json()).toMatchObject({ error: 'cannot-move' });
+    expect((await move('', 'nowhere')).status).toBe(404);
+    expect(await (await move('{"to": 1}')).json()).toMatchObject({ error: 'unknown-field' });
     expect(server.game.listRooms().find((r) => r.id === 'default')).toMatchObject({ worker: home, moves: 0 });
+    const moved = await move('');
+    expect(moved.status).toBe(200);
+    const { move: summary } = (await moved.json()) as { move: { from: number; to: number; reason: string } };
+    expect(summary).toMatchObject({ from: home, reason: 'asked for over the HTTP API' });
+    expect(server.game.listRooms().find((r) => r.id === 'default')).toMatchObject({ worker: summary.to, moves: 1 });
+    const snapshots = client.stats().snapshots;
+    await waitUntil('snapshots from the moved room', 10_000, () => client.stats().snapshots > snapshots + 5);
+    expect(client.stats().reconnects).toBe(0);
   }, 60_000);
   it('moves the room that proved heavier than estimated away from neighbours missing their budget, keeping its player', async () => {
     dir = await mkdtemp(join(tmpdir(), 'taos-room-move-'));
