@@ -160,11 +160,12 @@ export class RemoteRoom implements HostedRoom {
     try {
       entered = await this.thread.enter(this.id, member, entry);
     } catch (error) {
-      this.thread.unroute(member);
+      this.via((t) => t.unroute(member));
       throw error;
     }
     const { playerId } = entered;
-    this.thread.seated(member, playerId);
+    // A move may have begun while the worker seated the member: its route travels with the room.
+    this.via((t) => t.seated(member, playerId));
     const wasEmpty = this.players.size === 0;
     this.players.set(playerId, member);
     if (wasEmpty) this.emptyListeners.forEach((fn) => fn(false));
