@@ -274,13 +274,13 @@ export class WorkerRooms {
   private async importRoom(req: number, moving: MovingRoom): Promise<void> {
     const { carry } = moving;
     let built: (RoomSimulationBuild & { sim: Simulation }) | null = null;
+    const ready = this.prepared.get(carry.id);
+    this.prepared.delete(carry.id);
     try {
-      if (this.rooms.has(carry.id)) throw new RoomError(ErrorCode.Internal, `room ${carry.id} is already open in this worker`);
       const factory: RecordingFactory = this.opts.factory;
-      const ready = this.prepared.get(carry.id);
-      this.prepared.delete(carry.id);
       const b = await (ready ?? factory.createSimulation(carry.scenario, carry.params, carry.seed));
       built = b;
+      if (this.rooms.has(carry.id)) throw new RoomError(ErrorCode.Internal, `room ${carry.id} is already open in this worker`);
       b.sim.restoreCheckpointBytes(carry.checkpoint);
       if (b.sim.tick !== carry.tick || b.sim.stateHash() !== carry.hash) throw new Error(`room ${carry.id}: the restored checkpoint is at tick ${b.sim.tick} with hash ${b.sim.stateHash()}, expected tick ${carry.tick} with ${carry.hash}`);
       const spec = { id: carry.id, scenario: carry.scenario, params: carry.params, seed: carry.seed, netMode: carry.netModeRequested };

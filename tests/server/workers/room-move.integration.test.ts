@@ -127,6 +127,27 @@ describe('moving a room between room workers', () => {
     await waitUntil('snapshots from the moved room', 10_000, () => client.stats().snapshots > snapshots + 5);
     expect(client.stats().reconnects).toBe(0);
   }, 60_000);
+  it('goes on in its old worker, players and all, when the new one cannot take it', async () => {
+    dir = await mkdtemp(join(tmpdir(), 'taos-room-move-'));
+    server = await startServer({ port: 0, roomWorkers: 2, roomMoveCheckEveryMs: 0, scenario: 'character-course', logger: silentLogger(), metrics: createMetrics({ processMetrics: false }), clientDir: join(dir, 'no-client') });
+    const pool = server.game.workers!;
+    const client = connect(server.wsUrl, { name: 'stays', reconnect: false });
+    clients.push(client);
+    await client.whenConnected();
+    const home = pool.workers().find((t) => t.rooms.has('default'))!;
+    const other = pool.workers().find((t) => t !== home)!;
+    // A stray room under the same id, open in the other worker behind the pool's back, makes that worker refuse it.
+    await other.open({ id: 'default', scenario: 'character-course', params: {}, seed: 1 });
+    other.rooms.delete('default');
+    await expect(pool.moveRoom('default', { to: other.index })).rejects.toThrow(/already open in this worker/);
+    expect(pool.workers().find((t) => t.rooms.has('default'))).toBe(home);
+    expect(server.game.listRooms().find((r) => r.id === 'default')).toMatchObject({ worker: home.index, moves: 0, clients: 1 });
+    const snapshots = client.stats().snapshots;
+    await waitUntil('snapshots from the room that stayed', 10_000, () => client.stats().snapshots > snapshots + 5);
+    expect(client.stats().reconnects).toBe(0);
+    expect(client.state).toBe('connected');
+  }, 60_000);
+
   it('moves the room that proved heavier than estimated away from neighbours missing their budget, keeping its player', async () => {
     dir = await mkdtemp(join(tmpdir(), 'taos-room-move-'));
     server = await startServer({ port: 0, roomWorkers: 2, roomMoveCheckEveryMs: 0, scenario: 'character-course', logger: silentLogger(), metrics: createMetrics({ processMetrics: false }), clientDir: join(dir, 'no-client') });
