@@ -6,6 +6,16 @@ import { checkGameMessage, MAX_GAME_MESSAGES_PER_PLAYER_TICK, type GameMessage, 
 export class GameMessageQueue {
   private pending: GameMessage[] = [];
 
+  /** The messages waiting, in arrival order (a room moving to another thread takes them along). */
+  waiting(): GameMessage[] {
+    return this.pending.map((m) => ({ ...m, payload: [...m.payload] }));
+  }
+
+  /** Puts back messages taken with waiting() (before any other is offered). */
+  restore(messages: readonly GameMessage[]): void {
+    this.pending = messages.map((m) => ({ ...m, payload: [...m.payload] }));
+  }
+
   /** Queues a message for the next tick; returns why it was refused, or null. */
   offer(playerId: number, name: string, payload: readonly number[], kinds: readonly GameMessageKind[]): string | null {
     const error = checkGameMessage(name, payload, kinds);

@@ -122,6 +122,15 @@ export function createHttpApi(opts: HttpApiOptions): HttpApi {
       const seat = opts.access.seats.issue(roomId, req.ttlSeconds === undefined ? undefined : req.ttlSeconds * 1000);
       return { token: seat.token, roomId: seat.roomId, seatId: seat.seatId, expiresAt: new Date(seat.expiresAtMs).toISOString() };
     },
+    async moveRoom(roomId, worker) {
+      const pool = game.workers;
+      if (!pool) throw new HttpError(409, HttpErrorCode.CannotMove, 'rooms run on the main thread (--room-workers 0): there is no other worker to move to');
+      const from = pool.workers().find((t) => t.rooms.has(roomId));
+      if (!from) throw new HttpError(404, HttpErrorCode.RoomNotFound, `no room ${quote(roomId)} is open in a room worker`);
+      if (worker === from.index) throw new HttpError(409, HttpErrorCode.CannotMove, `room ${quote(roomId)} already runs in worker ${worker}`);
+      if (pool.isMoving) throw new HttpError(409, HttpErrorCode.CannotMove, 'another room is moving; try again shortly');
+      return pool.moveRoom(roomId, { to: worker, reason: 'asked for over the HTTP API' });
+    },
     metrics: () => game.renderMetrics(),
     authorize: opts.access.authorize,
     staticFiles: (req, res) => opts.staticFiles(req, res),

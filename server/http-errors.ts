@@ -30,6 +30,8 @@ export const HttpErrorCode = {
   BodyTooLarge: 'body-too-large',
   /** The room is hosted by another server of the fleet: the answer's `url` names it. */
   RoomMoved: 'room-moved',
+  /** The room cannot move to another room worker now (no workers, already there, or another room is moving). */
+  CannotMove: 'cannot-move',
   /** The rooms limit is reached, or the server has no physics memory left for another room. */
   ServerFull: 'server-full',
   ShuttingDown: 'shutting-down',

@@ -11,6 +11,7 @@ import { HttpError, HttpErrorCode, sendError, sendJson } from './http-errors.ts'
 import type { MonitorRoutes } from './monitor/monitor-routes.ts';
 import { isNetModeRequest, type NetModeRequest } from './net-mode-policy.ts';
 import { RoomError, type RoomInfo } from './room.ts';
+import type { RoomMoveSummary } from './workers/remote-room.ts';
 
 /** What POST /api/rooms asks for. */
 export interface CreateRoomRequest {
@@ -37,6 +38,8 @@ export interface HttpApi {
   roomPlayers?(roomId: string): Array<{ playerId: number; name: string }> | Promise<Array<{ playerId: number; name: string }>>;
   /** POST /api/rooms/ID/seats {ttlSeconds?}: a seat token for that room (an HttpError or RoomError on refusal). */
   reserveSeat(roomId: string, req: SeatRequest): SeatAnswer;
+  /** POST /api/rooms/ID/move {worker?}: moves the room to another room worker (absent: no room workers). */
+  moveRoom?(roomId: string, worker: number | undefined): Promise<RoomMoveSummary>;
   /** GET /metrics. */
   metrics(): Promise<{ body: string; contentType: string }>;
   /** GET /monitor and its data and actions (server/monitor/monitor-routes.ts); absent: no monitor. */
@@ -133,6 +136,21 @@ function asHttpError(error: unknown): HttpError | null {
   return null;
 }
 
+/** The body of POST /api/rooms/ID/move: empty, or {worker?: index}. */
+function parseMoveRequest(body: string): number | undefined {
+  let value: unknown;
+  try {
+    value = body.trim() === '' ? {} : JSON.parse(body);
+  } catch {
+    throw new HttpError(400, HttpErrorCode.BadJson, 'the body is not JSON');
+  }
+  if (typeof value !== 'object' || value === null || Array.isArray(value)) throw new HttpError(400, HttpErrorCode.BadBody, 'the body must be an object: {worker?}');
+  for (const key of Object.keys(value)) if (key !== 'worker') throw new HttpError(400, HttpErrorCode.UnknownField, `unknown field ${JSON.stringify(key.slice(0, 64))} (known: worker)`);
+  const worker = (value as { worker?: unknown }).worker;
+  if (worker !== undefined && !(Number.isInteger(worker) && (worker as number) >= 0)) throw new HttpError(400, HttpErrorCode.BadBody, 'worker must be a room worker index (a whole number ≥ 0)');
+  return worker as number | undefined;
+}
+
 function notAllowed(method: string, path: string, allow: string): HttpError {
   return new HttpError(405, HttpErrorCode.MethodNotAllowed, `${method} ${path} is not supported (allowed: ${allow})`, { allow });
 }
@@ -198,6 +216,12 @@ async function route(api: HttpApi, req: IncomingMessage, res: ServerResponse): P
       throw new HttpError(400, HttpErrorCode.BadBody, error instanceof Error ? error.message : 'the body is not a seat request');
     }
     sendJson(res, 201, { seat: api.reserveSeat(id, request) });
+    return;
+  }
+  const moveMatch = api.moveRoom ? /^\/api\/rooms\/([^/]+)\/move$/.exec(path) : null;
+  if (moveMatch && api.moveRoom) {
+    if (method !== 'POST') throw notAllowed(method, path, 'POST');
+    sendJson(res, 200, { move: await api.moveRoom(decodeSegment(moveMatch[1]), parseMoveRequest(await readBody(req))) });
     return;
   }
   const playersMatch = api.roomPlayers ? /^\/api\/rooms\/([^/]+)\/players$/.exec(path) : null;

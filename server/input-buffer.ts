@@ -29,6 +29,19 @@ export interface InputBufferStats {
 
 const HISTORY = 256;
 
+/** Everything an InputBuffer holds, as plain data (a room moving to another thread takes its buffers along). */
+export interface InputBufferState {
+  maxLeadTicks: number;
+  nextTick: number;
+  last: InputCommand;
+  suspended: boolean;
+  /** [tick, command] pairs still waiting. */
+  pending: Array<[number, InputCommand]>;
+  appliedTick: number[];
+  appliedOwn: number[];
+  stats: InputBufferStats;
+}
+
 /** A per-player input buffer; `take(tick)` must be called with consecutive ticks. */
 export class InputBuffer {
   /** Furthest ahead of the next tick to apply an input may be stamped. */
@@ -49,6 +62,32 @@ export class InputBuffer {
     if (!Number.isInteger(maxLeadTicks) || maxLeadTicks < 1) throw new Error(`InputBuffer: maxLeadTicks must be an integer ≥ 1, got ${maxLeadTicks}`);
     this.nextTick = firstTick;
     this.maxLeadTicks = maxLeadTicks;
+  }
+
+  /** A buffer continuing exactly where `state` (from exportState) left off. */
+  static fromState(state: InputBufferState): InputBuffer {
+    const b = new InputBuffer(state.nextTick, state.maxLeadTicks);
+    b.last = state.last;
+    b.suspended = state.suspended;
+    for (const [tick, command] of state.pending) b.pending.set(tick, command);
+    b.appliedTick.set(state.appliedTick);
+    b.appliedOwn.set(state.appliedOwn);
+    Object.assign(b.stats, state.stats);
+    return b;
+  }
+
+  /** The buffer's whole state as plain data. */
+  exportState(): InputBufferState {
+    return {
+      maxLeadTicks: this.maxLeadTicks,
+      nextTick: this.nextTick,
+      last: this.last,
+      suspended: this.suspended,
+      pending: [...this.pending],
+      appliedTick: [...this.appliedTick],
+      appliedOwn: [...this.appliedOwn],
+      stats: { ...this.stats },
+    };
   }
 
   /** The next tick take() will serve. */

@@ -19,10 +19,14 @@ export function enterRoom(room: Room, sink: MemberSink, entry: RoomEntry, metric
   }
   const built = buildWelcome(room, playerId, { token: null, graceMs: 0, resumed: 'resumePlayerId' in entry });
   member.encoder = built.encoder;
+  return { ...seatOf(room, playerId, member), welcome: built.message };
+}
+
+/** The seat of a player whose member is already in `room` (a room moved in from another thread: no new welcome). */
+export function seatOf(room: Room, playerId: number, member: DeliveringMember): Omit<Seat, 'welcome'> & { member: DeliveringMember } {
   return {
     member,
     playerId,
-    welcome: built.message,
     offerInput: (tick, command) => room.offerInput(playerId, tick, command),
     offerMessage: (name, payload) => room.offerMessage(playerId, name, payload),
     // The member's current encoder: a fall back from predict mode starts a new one.

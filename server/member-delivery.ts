@@ -10,6 +10,9 @@ import type { PredictFeed } from './predict-feed.ts';
 import type { RoomMember, WorldFrame } from './room.ts';
 import type { SnapshotFanOut } from './snapshot-fan-out.ts';
 
+/** A member's predict stream: snapshots instead, streaming records, or a checkpoint due before the next record. */
+export type PredictState = 'off' | 'on' | 'pending';
+
 /** Room-side half of a member: encodes for it and hands the bytes to its sink. */
 export class DeliveringMember implements RoomMember {
   /** Set once the welcome is built (it counts the welcome's bodies as known); nothing is sent before. */
@@ -57,6 +60,22 @@ export class DeliveringMember implements RoomMember {
       this.heldStateVersion = -1;
     }
     return true;
+  }
+
+  /** Where the member's predict stream stands: off (snapshots), on, or a checkpoint waiting to go out first. */
+  get predictState(): PredictState {
+    if (this.delivery !== NetMode.Predict) return 'off';
+    return this.checkpoint === null ? 'on' : 'pending';
+  }
+
+  /**
+   * Takes over a member whose stream another thread's room served up to the tick before this room's next one: 'on'
+   * goes on with the next record (the client has every earlier one), 'pending' sends a checkpoint first.
+   */
+  continueStream(state: PredictState): void {
+    if (state === 'off' || !this.feed) return;
+    if (state === 'pending') this.setNetMode(NetMode.Predict);
+    else this.delivery = NetMode.Predict;
   }
 
   deliverRecord(tick: number, message: Uint8Array): void {

@@ -10,6 +10,7 @@ import { decideNetMode } from './net-mode-policy.ts';
 import { Room, RoomError, type RoomRecorder } from './room.ts';
 import type { PlayerInputState } from '../shared/protocol/record-delta.ts';
 import type { RoomFactory, RoomSimulationBuild, RoomSpec } from './room-manager.ts';
+import type { RoomCarry } from './room-carry.ts';
 
 /** What openRoom needs besides the spec. */
 export interface OpenRoomOptions {
@@ -47,8 +48,11 @@ export async function openRoom(spec: RoomSpec, opts: OpenRoomOptions): Promise<R
   return roomAround(spec, built, recorder, opts);
 }
 
-/** The Room (not started) around a built simulation and its recorder (a resumed room's comes from its log). */
-export function roomAround(spec: RoomSpec, built: RoomSimulationBuild, recorder: RoomRecorder | null, opts: Omit<OpenRoomOptions, 'factory'>, predictInputs?: readonly PlayerInputState[]): Room {
+/**
+ * The Room (not started) around a built simulation and its recorder (a resumed room's comes from its log; a room
+ * moving in from another thread brings its state in `carried`).
+ */
+export function roomAround(spec: RoomSpec, built: RoomSimulationBuild, recorder: RoomRecorder | null, opts: Omit<OpenRoomOptions, 'factory'>, predictInputs?: readonly PlayerInputState[], carried?: RoomCarry): Room {
   const { id, scenario, seed } = spec;
   const netModeRequested = spec.netMode ?? 'auto';
   const decision = decideNetMode(netModeRequested, scenario, built.params, built.tickCostMs);
@@ -76,5 +80,6 @@ export function roomAround(spec: RoomSpec, built: RoomSimulationBuild, recorder:
     catchUp: opts.catchUp,
     phases: opts.phases,
     predictInputs,
+    carried,
   });
 }

@@ -34,6 +34,11 @@ export class PredictFeed {
     return this.sim.tick;
   }
 
+  /** The record coder's player states after the last record framed (a room moving threads continues the stream). */
+  inputs(): PlayerInputState[] {
+    return this.coder.state();
+  }
+
   /** The framed record message of the record just stepped (the simulation is now after it). */
   frame(record: TickInputRecord): Uint8Array {
     const { bits, joins } = this.coder.encode(record);

@@ -187,6 +187,25 @@ export async function createRoomRecorder(opts: RoomRecorderOptions): Promise<Roo
         stop(error);
       }
     },
+    async handOff(): Promise<ContinuedLog | null> {
+      if (failed) return null;
+      failed = true; // nothing more is appended on this thread
+      if (timer) clearInterval(timer);
+      try {
+        // Every record durable and every send held for one released (in order) before another thread takes the file.
+        if (commit) await new Promise<void>((resolve) => commit.whenDurable(resolve));
+        else await writer.sync();
+        await writer.abandon();
+      } catch (error) {
+        failed = false;
+        stop(error);
+        return null;
+      } finally {
+        opts.onClose?.();
+      }
+      opts.logger.info({ room: opts.roomId, path, ticks: writer.ticks }, 'recording handed to another thread');
+      return { path, header: writer.header, ticks: writer.ticks, validBytes: writer.bytesAppended };
+    },
     async close(finalTick: number, finalHash: string | null): Promise<void> {
       if (failed) return;
       failed = true;

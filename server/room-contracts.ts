@@ -4,6 +4,7 @@ import type { GameInputField } from '../shared/sim/game-input.ts';
 import type { GameMessageKind } from '../shared/sim/game-messages.ts';
 import type { GameStateField, GameStateValue } from '../shared/sim/game-state.ts';
 import type { BodyDescriptor, CharacterState, SimEvent, TickInputRecord } from '../shared/sim/types.ts';
+import type { ContinuedLog } from './recorder.ts';
 
 /** The bulk body read the room hands to snapshot encoders (the world's readBodyStates() shape). */
 export interface BodyStates {
@@ -52,6 +53,11 @@ export interface RoomRecorder {
    * This is how nothing a client sees can be missing from the log after a crash (--durability tick).
    */
   release?(tick: number, send: () => void): void;
+  /**
+   * Lets go of the log without an end record once every record is durable and every held send released, so a room
+   * moving to another thread goes on appending to the same file; null when the recording had stopped already.
+   */
+  handOff?(): Promise<ContinuedLog | null>;
 }
 
 /** The world after one snapshot tick, shared by every member's encoder (copies: valid after the tick). */

@@ -11,6 +11,7 @@ import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
 import type { NetModeRequest } from './net-mode-policy.ts';
 import type { RoomRecorder } from './room-contracts.ts';
+import type { RoomCarry } from './room-carry.ts';
 import type { PaceReport } from './room-pace.ts';
 import type { Clock } from '../shared/clock.ts';
 
@@ -58,6 +59,8 @@ export interface RoomOptions {
   phases?: TickPhases | null;
   /** A resumed room's players already in the game with their last commands, for predict mode's record stream. */
   predictInputs?: readonly PlayerInputState[];
+  /** A room moving in from another thread goes on from this state; its connected players' members reattach() before start(). */
+  carried?: RoomCarry;
   /** How the room serves its members (decided by net-mode-policy.ts). Default snapshot. */
   netMode?: NetMode;
   /** The mode the room was asked for. Default: netMode. */
@@ -87,6 +90,9 @@ export interface RoomInfo extends PaceReport {
   netMode: NetMode;
   /** Why the room serves snapshots although predict was asked for or allowed (absent otherwise). */
   netModeNote?: string;
+  /** The room worker it runs in, and how often it moved to another one (absent: rooms on the main thread). */
+  worker?: number;
+  moves?: number;
 }
 
 /** What a held player (link down, character kept) applies each tick: no movement, no buttons, same look direction. */

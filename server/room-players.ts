@@ -4,6 +4,7 @@ import type { InputCommand } from '../shared/sim/input.ts';
 import type { TickInputRecord } from '../shared/sim/types.ts';
 import { InputBuffer } from './input-buffer.ts';
 import type { RoomMember } from './room-contracts.ts';
+import type { CarriedPlayer } from './room-carry.ts';
 
 /** One player of a room. */
 export interface RoomPlayer {
@@ -119,6 +120,19 @@ export class RoomPlayers {
   /** Seats whose member is connected, in seating order. */
   connected(): ConnectedPlayer[] {
     return [...this.byId.values()].filter((p): p is ConnectedPlayer => p.member !== null);
+  }
+
+  /** The players as a moving room carries them (room-carry.ts), with the id counter and the leaves still due. */
+  carry(): { players: CarriedPlayer[]; nextPlayerId: number; pendingLeaves: number[] } {
+    const players = [...this.byId.values()].map((p) => ({ playerId: p.playerId, name: p.name, inWorld: p.inWorld, held: p.member === null, inputs: p.inputs.exportState() }));
+    return { players, nextPlayerId: this.nextPlayerId, pendingLeaves: [...this.pendingLeaves] };
+  }
+
+  /** Seats a moved room's players, every one held until its member reattaches. */
+  adopt(c: { players: readonly CarriedPlayer[]; nextPlayerId: number; pendingLeaves: readonly number[] }): void {
+    for (const p of c.players) this.byId.set(p.playerId, { playerId: p.playerId, name: p.name, member: null, inputs: InputBuffer.fromState(p.inputs), inWorld: p.inWorld });
+    this.nextPlayerId = c.nextPlayerId;
+    this.pendingLeaves = [...c.pendingLeaves];
   }
 
   /** Unseats everyone (the room closed) and returns who was seated. */

@@ -22,6 +22,7 @@ import { TickClock } from './tick-clock.ts';
 import { TickTimes } from './monitor/tick-times.ts';
 
 import type { RoomMember, RoomSimulation, WorldFrame } from './room-contracts.ts';
+import type { RoomCarry } from './room-carry.ts';
 
 export type { BodyStates, RoomMember, RoomRecorder, RoomSimulation, WorldFrame } from './room-contracts.ts';
 export { heldInput, RoomError, type JoinResult, type RoomInfo, type RoomOptions } from './room-options.ts';
@@ -96,6 +97,7 @@ export class Room implements HostedRoom {
     const initial = sim.readBodyStates();
     this.lastBodyCount = initial.count;
     for (let i = 0; i < initial.count; i++) if ((initial.flags[i] & BodyFlag.Static) !== 0) this.sceneStatics.add(initial.ids[i]);
+    if (opts.carried) this.adoptCarry(opts.carried);
     this.phaseMs = opts.phases?.take() ?? null;
     this.tickClock = new TickClock({
       clock: opts.clock,
@@ -162,7 +164,43 @@ export class Room implements HostedRoom {
   /** Starts ticking (unless empty and pausing when empty). */
   start(): void {
     if (this.closed) return;
-    if (this.players.size > 0 || !(this.opts.pauseWhenEmpty ?? true)) this.tickClock.start();
+    if (this.players.size > 0 || this.players.hasPendingLeaves || !(this.opts.pauseWhenEmpty ?? true)) this.tickClock.start();
+  }
+
+  /**
+   * Stops the room between two ticks and lets this thread go of it for another to go on with (room-carry.ts): held
+   * sends go out and the log is handed over first, then the room is gone from here without a close notice to anyone.
+   */
+  async handOff(): Promise<RoomCarry> {
+    const sim = this.sim;
+    if (!sim.saveCheckpointBytes) throw new RoomError(ErrorCode.Internal, `room ${this.id}: its simulation cannot checkpoint, so it cannot move`);
+    if (this.closed) throw new RoomError(ErrorCode.RoomNotFound, `room ${this.id} is closed`);
+    this.tickClock.stop();
+    const log = (await this.opts.recorder?.handOff?.()) ?? null;
+    if (this.closed) throw new RoomError(ErrorCode.RoomNotFound, `room ${this.id} closed while moving`);
+    const carry: RoomCarry = {
+      id: this.id, scenario: this.scenarioName, params: this.params, seed: this.seed, netModeRequested: this.netModeRequested,
+      tick: sim.tick, checkpoint: sim.saveCheckpointBytes(), hash: sim.stateHash(), log, predictInputs: this.predictFeed?.inputs() ?? null,
+      ...this.players.carry(), messages: this.gameMessages.waiting(),
+      snapshotAccumulator: this.snapshotAccumulator, sceneStatics: [...this.sceneStatics], lastBodyCount: this.lastBodyCount, cpuSeconds: this.cpuSecondsTotal,
+    };
+    this.closedReason = 'moved to another thread';
+    if (this.phaseMs !== null) this.opts.phases?.release(this.phaseMs);
+    this.opts.metrics.players.dec(this.players.clear().length);
+    sim.destroy();
+    this.clearListeners();
+    return carry;
+  }
+
+  private adoptCarry(c: RoomCarry): void {
+    this.sceneStatics.clear();
+    for (const id of c.sceneStatics) this.sceneStatics.add(id);
+    this.lastBodyCount = c.lastBodyCount;
+    this.snapshotAccumulator = c.snapshotAccumulator;
+    this.cpuSecondsTotal = c.cpuSeconds;
+    this.players.adopt(c);
+    this.gameMessages.restore(c.messages);
+    this.opts.metrics.players.inc(c.players.length);
   }
 
   /** The room's WASM heap (used and free bytes), or null when closed or the simulation does not say. */
@@ -411,7 +449,11 @@ export class Room implements HostedRoom {
     this.sim.destroy();
     this.opts.logger.info({ room: this.id, reason, tick }, 'room closed');
     for (const fn of this.closeListeners) fn(reason);
-    // Nothing outlives the room through its listeners (they close over sessions, managers, recorders).
+    this.clearListeners();
+  }
+
+  // Nothing outlives the room through its listeners (they close over sessions, managers, recorders).
+  private clearListeners(): void {
     this.tickListeners.clear();
     this.emptyListeners.clear();
     this.closeListeners.clear();

@@ -98,6 +98,8 @@ export interface StartServerOptions extends AccessOptions {
   tls?: { cert: string | Buffer; key: string | Buffer };
   /** Room worker threads to run the rooms in (0: every room on the main thread, as before). Default 0. */
   roomWorkers?: number;
+  /** How often the room workers' move policy looks at their loads (ms; 0: rooms move only on request). Default 1000. */
+  roomMoveCheckEveryMs?: number;
   /** Modules exporting ScenarioDefinitions the room workers offer beside the registry (file URLs; tests' own scenes). */
   workerScenarioModules?: readonly string[];
   /** Join a fleet of servers through a Redis directory (docs/deploy.md). Default: a single process. */
@@ -186,6 +188,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
           scenarioModules: opts.workerScenarioModules,
           logLevel: logger.level,
           logger,
+          moveCheckEveryMs: opts.roomMoveCheckEveryMs,
         });
   const factory = createRoomFactory({ scenarios, logger, recordDir: opts.recordDir ?? null, hashEveryTicks: opts.recordHashEveryTicks, durability: opts.durability, checkpointEverySeconds: opts.checkpointEverySeconds });
   let resumed: ResumeScan | null = null;

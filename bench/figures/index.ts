@@ -135,6 +135,14 @@ export const FIGURES: readonly FigureSpec[] = Object.freeze([
     timeLimitMs: (quick: boolean) => (quick ? min(2) : min(3)),
     module: 'figures/fleet-redirect.ts',
   },
+  {
+    name: 'room-move',
+    title: 'room move',
+    detailKey: 'roomMove',
+    headlineKeys: ['roomMovePauseMs'],
+    timeLimitMs: (quick: boolean) => (quick ? min(2) : min(3)),
+    module: 'figures/room-move.ts',
+  },
 ]);
 
 /** Every figure name. */
@@ -192,4 +200,5 @@ export const HEADLINE_KEYS: readonly string[] = [
   'resimMsP99',
   'desyncsPerHour',
   'redirectWelcomeMs',
+  'roomMovePauseMs',
 ];

@@ -25,14 +25,32 @@ export interface RoomThreadLink {
   queueNetMode(member: number, mode: NetMode): void;
 }
 
+/** One move of a room between workers (/api/rooms, logs). */
+export interface RoomMoveSummary {
+  from: number;
+  to: number;
+  /** The tick it stopped at in the old worker and went on from in the new one. */
+  tick: number;
+  /** How long its players saw no tick (ms). */
+  pauseMs: number;
+  reason: string;
+}
+
 /** A room hosted by a worker thread. */
 export class RemoteRoom implements HostedRoom {
   readonly id: string;
   readonly scenarioName: string;
   readonly params: Readonly<Record<string, number>>;
-  /** The worker's index in the pool. */
-  readonly workerIndex: number;
-  private readonly thread: RoomThreadLink;
+  readonly seed: number | string;
+  /** The index in the pool of the worker it runs in (changes when it moves). */
+  workerIndex: number;
+  /** Times it moved to another worker, and the last move. */
+  moves = 0;
+  lastMove: RoomMoveSummary | null = null;
+  private thread: RoomThreadLink;
+  /** While the room moves between workers: what its players did meanwhile, for the worker it lands in. */
+  private held: Array<(thread: RoomThreadLink) => void> | null = null;
+  private moved: { done: Promise<void>; resolve: () => void } | null = null;
   /** Players by id, with the member id of their live link (null: held for a reconnect). */
   private readonly players = new Map<number, number | null>();
   private readonly closeListeners = new Set<(reason: string) => void>();
@@ -44,7 +62,8 @@ export class RemoteRoom implements HostedRoom {
 
   readonly recordingPath: string | null;
 
-  constructor(thread: RoomThreadLink, workerIndex: number, opened: RoomInfo, recordingPath: string | null = null) {
+  constructor(thread: RoomThreadLink, workerIndex: number, opened: RoomInfo, seed: number | string, recordingPath: string | null = null) {
+    this.seed = seed;
     this.recordingPath = recordingPath;
     this.thread = thread;
     this.workerIndex = workerIndex;
@@ -80,6 +99,8 @@ export class RemoteRoom implements HostedRoom {
       tickMsP99: s ? s.tickMsP99 : this.opened.tickMsP99,
       tickCpuMsP99: s ? s.tickCpuMsP99 : this.opened.tickCpuMsP99,
       tickGapMsMax: s ? s.tickGapMsMax : this.opened.tickGapMsMax,
+      worker: this.workerIndex,
+      moves: this.moves,
     };
   }
 
@@ -94,47 +115,74 @@ export class RemoteRoom implements HostedRoom {
   detach(playerId: number): boolean {
     const member = this.players.get(playerId);
     if (member === undefined || member === null || this.closed) return false;
-    this.thread.unroute(member);
     this.players.set(playerId, null);
-    this.thread.detach(this.id, playerId);
+    this.via((t) => {
+      t.unroute(member);
+      t.detach(this.id, playerId);
+    });
     return true;
   }
 
   leave(playerId: number): void {
     if (!this.players.has(playerId)) return;
     this.forget(playerId);
-    if (!this.closed) this.thread.leave(this.id, playerId);
+    if (!this.closed) this.via((t) => t.leave(this.id, playerId));
+  }
+
+  /** Holds what players do from now until endMove() (the room is being exported from its worker). */
+  beginMove(): void {
+    this.held = [];
+    let resolve = (): void => undefined;
+    const done = new Promise<void>((r) => (resolve = r));
+    this.moved = { done, resolve };
+  }
+
+  /** The room now runs on `thread` (or still on the old one when the move failed): what was held goes there. */
+  endMove(thread: RoomThreadLink, workerIndex: number, summary: RoomMoveSummary | null): void {
+    this.thread = thread;
+    this.workerIndex = workerIndex;
+    if (summary) {
+      this.moves++;
+      this.lastMove = summary;
+    }
+    const held = this.held ?? [];
+    const moved = this.moved;
+    this.held = null;
+    this.moved = null;
+    if (!this.closed) for (const fn of held) fn(thread);
+    moved?.resolve();
   }
 
   async enter(sink: MemberSink, entry: RoomEntry): Promise<Seat> {
+    while (this.moved) await this.moved.done;
     const member = this.thread.route(sink, this);
     let entered: EnteredRoom;
     try {
       entered = await this.thread.enter(this.id, member, entry);
     } catch (error) {
-      this.thread.unroute(member);
+      this.via((t) => t.unroute(member));
       throw error;
     }
     const { playerId } = entered;
-    this.thread.seated(member, playerId);
+    // A move may have begun while the worker seated the member: its route travels with the room.
+    this.via((t) => t.seated(member, playerId));
     const wasEmpty = this.players.size === 0;
     this.players.set(playerId, member);
     if (wasEmpty) this.emptyListeners.forEach((fn) => fn(false));
-    const thread = this.thread;
     return {
       playerId,
       welcome: entered.welcome,
       offerInput: (tick, command) => {
-        thread.queueInput(member, tick, command);
+        this.via((t) => t.queueInput(member, tick, command));
         return null;
       },
       offerMessage: (name, payload) => {
-        thread.queueMessage(member, name, payload);
+        this.via((t) => t.queueMessage(member, name, payload));
         return null;
       },
-      acknowledge: (tick) => thread.queueAck(member, tick),
+      acknowledge: (tick) => this.via((t) => t.queueAck(member, tick)),
       pace: () => ({ ticksPerSecond: this.lastStatus?.ticksPerSecond ?? 0, slow: this.lastStatus?.slow ?? false }),
-      setNetMode: (mode) => thread.queueNetMode(member, mode),
+      setNetMode: (mode) => this.via((t) => t.queueNetMode(member, mode)),
       serverTick: () => this.lastTick,
       missedInputTicks: () => {
         const missed = this.lastStatus?.missedInputTicks ?? [];
@@ -158,6 +206,7 @@ export class RemoteRoom implements HostedRoom {
   start(): void {}
 
   async close(reason: string): Promise<void> {
+    while (this.moved) await this.moved.done;
     if (this.closed) return;
     try {
       await this.thread.close(this.id, reason);
@@ -199,9 +248,15 @@ export class RemoteRoom implements HostedRoom {
     this.emptyListeners.clear();
   }
 
+  // Straight to the worker, or held for the one the room lands in while it moves.
+  private via(fn: (thread: RoomThreadLink) => void): void {
+    if (this.held) this.held.push(fn);
+    else fn(this.thread);
+  }
+
   private forget(playerId: number): void {
     const member = this.players.get(playerId);
-    if (member !== undefined && member !== null) this.thread.unroute(member);
+    if (member !== undefined && member !== null) this.via((t) => t.unroute(member));
     this.players.delete(playerId);
     if (this.players.size === 0) this.emptyListeners.forEach((fn) => fn(true));
   }

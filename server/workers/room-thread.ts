@@ -10,7 +10,7 @@ import type { Logger } from '../logger.ts';
 import { RoomError } from '../room.ts';
 import type { RoomSpec } from '../room-manager.ts';
 import { RemoteRoom, type RoomThreadLink } from './remote-room.ts';
-import { forEachSend, GC_PAUSE_FIELDS, type EnteredRoom, type FromWorker, type MemberTraffic, type OpenedRoom, type ToWorker, type WorkerInit } from './worker-protocol.ts';
+import { forEachSend, GC_PAUSE_FIELDS, type EnteredRoom, type FromWorker, type MemberTraffic, type MovingRoom, type OpenedRoom, type ToWorker, type WorkerInit } from './worker-protocol.ts';
 import { siblingModuleUrl } from '../package-root.ts';
 
 /** GC pauses a RoomThread keeps of its worker. */
@@ -19,7 +19,8 @@ const RECENT_GC_PAUSES = 4096;
 /** Members of every thread share one numbering (a member id is never reused in a process). */
 let nextMemberId = 1;
 
-interface Route {
+/** Where a member's bytes go on this thread, and the room and player it is in. */
+export interface MemberRoute {
   sink: MemberSink;
   room: RemoteRoom;
   playerId: number;
@@ -46,7 +47,7 @@ export class RoomThread implements RoomThreadLink {
   private readonly logger: Logger;
   private readonly onDied: (thread: RoomThread, why: string) => void;
   private readonly pending = new Map<number, Pending>();
-  private readonly routes = new Map<number, Route>();
+  private readonly routes = new Map<number, MemberRoute>();
   private readonly backed = new Set<number>();
   private nextReq = 1;
   private traffic = emptyTraffic();
@@ -84,9 +85,46 @@ export class RoomThread implements RoomThreadLink {
   /** Opens a room in this worker. */
   async open(spec: RoomSpec): Promise<RemoteRoom> {
     const opened = (await this.request({ t: 'open', req: 0, ...spec })) as OpenedRoom;
-    const room = new RemoteRoom(this, this.index, opened.info, opened.recordingPath);
+    const room = new RemoteRoom(this, this.index, opened.info, spec.seed, opened.recordingPath);
     this.rooms.set(room.id, room);
     return room;
+  }
+
+  /** Stops a room of this worker between two ticks and takes it out, with its state and members (a room moving). */
+  exportRoom(roomId: string): Promise<MovingRoom> {
+    this.flushTraffic();
+    return this.request({ t: 'export', req: 0, room: roomId }) as Promise<MovingRoom>;
+  }
+
+  /** Has the worker build a simulation for a room about to move in (before the room stops where it runs). */
+  async prepareRoom(room: RemoteRoom): Promise<void> {
+    await this.request({ t: 'prepare', req: 0, room: room.id, scenario: room.scenarioName, params: room.params, seed: room.seed });
+  }
+
+  /** Drops what prepareRoom built (the move did not happen). */
+  discardPrepared(roomId: string): void {
+    this.post({ t: 'discard', room: roomId });
+  }
+
+  /** Gives up a moved-out room and its members' routes (same member ids on the thread that adopts them). */
+  releaseRoom(room: RemoteRoom): Array<[number, MemberRoute]> {
+    this.rooms.delete(room.id);
+    const out: Array<[number, MemberRoute]> = [];
+    for (const [member, r] of this.routes) if (r.room === room) out.push([member, r]);
+    for (const [member] of out) this.unroute(member);
+    return out;
+  }
+
+  /** Takes a room moving in and its members' routes, then has the worker go on with it. */
+  async importRoom(room: RemoteRoom, routes: ReadonlyArray<[number, MemberRoute]>, moving: MovingRoom): Promise<OpenedRoom> {
+    for (const [member, r] of routes) this.routes.set(member, r);
+    this.rooms.set(room.id, room);
+    try {
+      return (await this.request({ t: 'import', req: 0, moving })) as OpenedRoom;
+    } catch (error) {
+      if (this.rooms.get(room.id) === room) this.releaseRoom(room);
+      throw error;
+    }
   }
 
   /** The worker's metrics as prom-client JSON (null when it does not answer within `timeoutMs`). */
@@ -172,12 +210,15 @@ export class RoomThread implements RoomThreadLink {
   private scheduleFlush(): void {
     if (this.flushPending) return;
     this.flushPending = true;
-    setImmediate(() => {
-      this.flushPending = false;
-      const traffic = this.traffic;
-      this.traffic = emptyTraffic();
-      if (traffic.inputs.length + traffic.messages.length + traffic.acks.length + traffic.pressure.length + traffic.netModes.length > 0) this.post({ t: 'traffic', traffic });
-    });
+    setImmediate(() => this.flushTraffic());
+  }
+
+  /** Posts what members queued now (a room about to move: nothing of it may trail behind its export). */
+  flushTraffic(): void {
+    this.flushPending = false;
+    const traffic = this.traffic;
+    this.traffic = emptyTraffic();
+    if (traffic.inputs.length + traffic.messages.length + traffic.acks.length + traffic.pressure.length + traffic.netModes.length > 0) this.post({ t: 'traffic', traffic });
   }
 
   private receive(msg: FromWorker): void {

@@ -8,6 +8,8 @@ import type { DeliveryKind, RoomEntry } from '../hosted-room.ts';
 import type { RoomInfo } from '../room.ts';
 import type { DurabilityOptions } from '../recorder.ts';
 import type { NetModeRequest } from '../net-mode-policy.ts';
+import type { PredictState } from '../member-delivery.ts';
+import type { RoomCarry } from '../room-carry.ts';
 
 /** Room settings every room of a worker shares (the serve flags). */
 export interface WorkerRoomConfig {
@@ -74,7 +76,28 @@ export type ToWorker =
   | { t: 'detach'; room: string; player: number }
   | { t: 'close'; req: number; room: string; reason: string }
   | { t: 'traffic'; traffic: MemberTraffic }
-  | { t: 'metrics'; req: number };
+  | { t: 'metrics'; req: number }
+  /** Build a fresh simulation for a room about to move in (the slow part of a move, done before the room stops). */
+  | { t: 'prepare'; req: number; room: string; scenario: string; params: Readonly<Record<string, number>>; seed: number | string }
+  /** Drop a prepared simulation (the move did not happen). */
+  | { t: 'discard'; room: string }
+  /** Stop a room between two ticks and hand it back (answers a MovingRoom; the room is gone from the worker). */
+  | { t: 'export'; req: number; room: string }
+  /** Go on with a room another worker exported (answers an OpenedRoom). */
+  | { t: 'import'; req: number; moving: MovingRoom };
+
+/** A member of a moving room: the same member id on the main thread, and where its predict stream stands. */
+export interface CarriedMember {
+  member: number;
+  playerId: number;
+  predict: PredictState;
+}
+
+/** A room between two workers: its state and its connected members. */
+export interface MovingRoom {
+  carry: RoomCarry;
+  members: CarriedMember[];
+}
 
 /** What members sent since the last flush, and whose sockets changed backed-up state (flat tuples). */
 export interface MemberTraffic {

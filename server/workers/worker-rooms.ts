@@ -10,14 +10,18 @@ import { ErrorCode } from '../../shared/protocol/opcodes.ts';
 import { CatchUpBudget } from '../catch-up-budget.ts';
 import { TickPhases } from '../tick-phases.ts';
 import { DeliveryKind, type MemberSink, type Seat } from '../hosted-room.ts';
-import { enterRoom } from '../local-seat.ts';
+import { enterRoom, seatOf } from '../local-seat.ts';
+import { DeliveringMember } from '../member-delivery.ts';
+import { SnapshotEncoder } from '../../shared/protocol/index.ts';
+import type { Simulation } from '../../shared/sim/simulation.ts';
+import type { RecordingFactory } from '../room-factory.ts';
 import type { Logger } from '../logger.ts';
 import type { ServerMetrics } from '../metrics.ts';
-import { openRoom } from '../open-room.ts';
+import { openRoom, roomAround, type OpenRoomOptions } from '../open-room.ts';
 import { RoomError, type Room } from '../room.ts';
-import type { RoomFactory } from '../room-manager.ts';
+import type { RoomFactory, RoomSimulationBuild } from '../room-manager.ts';
 import { OVERLOADED_NICENESS, setThreadNiceness } from './thread-priority.ts';
-import { ByteBatcher, GC_PAUSE_FIELDS, STATUS_INTERVAL_MS, type FromWorker, type RoomStatus, type ToWorker, type WorkerRoomConfig } from './worker-protocol.ts';
+import { ByteBatcher, GC_PAUSE_FIELDS, STATUS_INTERVAL_MS, type CarriedMember, type FromWorker, type MovingRoom, type OpenedRoom, type RoomStatus, type ToWorker, type WorkerRoomConfig } from './worker-protocol.ts';
 
 /** Most GC pauses one status carries (a worker collecting more often than this is reported by its tick times). */
 const MAX_GC_PAUSES_PER_STATUS = 256;
@@ -27,7 +31,7 @@ export type PostToMain = (msg: FromWorker, transfer?: ArrayBuffer[]) => void;
 
 /** Options of WorkerRooms. */
 export interface WorkerRoomsOptions {
-  factory: RoomFactory;
+  factory: RoomFactory & RecordingFactory;
   clock: Clock;
   metrics: ServerMetrics;
   logger: Logger;
@@ -68,8 +72,9 @@ class RemoteSink implements MemberSink {
 
 interface MemberEntry {
   room: Room;
-  seat: Seat;
+  seat: Omit<Seat, 'welcome'>;
   sink: RemoteSink;
+  delivering: DeliveringMember;
 }
 
 /** One room's counters at the start of the current status window. */
@@ -86,6 +91,8 @@ export class WorkerRooms {
   private readonly rooms = new Map<string, Room>();
   private readonly members = new Map<number, MemberEntry>();
   private readonly windows = new Map<string, Window>();
+  /** Simulations built for rooms about to move in, by room id. */
+  private readonly prepared = new Map<string, Promise<RoomSimulationBuild & { sim: Simulation }>>();
   private readonly out = new ByteBatcher();
   private readonly ticks = new Map<string, number>();
   private flushPending = false;
@@ -140,7 +147,7 @@ export class WorkerRooms {
         if (!room || room.closed) throw new RoomError(ErrorCode.RoomNotFound, `room ${msg.room} is closed`);
         const sink = new RemoteSink(msg.member, this);
         const seat = enterRoom(room, sink, msg.entry, this.opts.metrics);
-        this.members.set(msg.member, { room, seat, sink });
+        this.members.set(msg.member, { room, seat, sink, delivering: seat.member });
         this.reply(msg.req, { playerId: seat.playerId, welcome: seat.welcome });
         return;
       }
@@ -179,6 +186,32 @@ export class WorkerRooms {
         for (let i = 0; i < netModes.length; i += 2) this.members.get(netModes[i])?.seat.setNetMode(netModes[i + 1] === 1 ? NetMode.Predict : NetMode.Snapshot);
         return;
       }
+      case 'prepare': {
+        const factory: RecordingFactory = this.opts.factory;
+        const built = factory.createSimulation(msg.scenario, msg.params, msg.seed);
+        void this.prepared.get(msg.room)?.then((b) => b.sim.destroy(), () => undefined);
+        this.prepared.set(msg.room, built);
+        built.then(
+          () => this.reply(msg.req, null),
+          (error: unknown) => {
+            if (this.prepared.get(msg.room) === built) this.prepared.delete(msg.room);
+            this.fail(msg.req, error);
+          },
+        );
+        return;
+      }
+      case 'discard': {
+        const built = this.prepared.get(msg.room);
+        this.prepared.delete(msg.room);
+        void built?.then((b) => b.sim.destroy(), () => undefined);
+        return;
+      }
+      case 'export':
+        void this.exportRoom(msg.req, msg.room);
+        return;
+      case 'import':
+        void this.importRoom(msg.req, msg.moving);
+        return;
       case 'metrics':
         void this.opts.metrics.registry.getMetricsAsJSON().then(
           (json) => this.reply(msg.req, json),
@@ -191,38 +224,97 @@ export class WorkerRooms {
   private async open(req: number, id: string, scenario: string, params: Readonly<Record<string, number>>, seed: number | string, netMode: NetModeRequest | undefined): Promise<void> {
     try {
       if (this.rooms.has(id)) throw new RoomError(ErrorCode.Internal, `room ${id} is already open in this worker`);
-      const { config } = this.opts;
-      const room = await openRoom(
-        { id, scenario, params, seed, netMode },
-        {
-          factory: this.opts.factory,
-          clock: this.opts.clock,
-          metrics: this.opts.metrics,
-          logger: this.opts.logger,
-          snapshotRateHz: config.snapshotRateHz,
-          maxClientsPerRoom: config.maxClientsPerRoom,
-          maxCatchUpTicks: config.maxCatchUpTicks,
-          maxInputLeadTicks: config.maxInputLeadTicks,
-          pauseWhenEmpty: config.pauseWhenEmpty,
-          catchUp: this.catchUp,
-          phases: this.phases,
-        },
-      );
-      this.rooms.set(id, room);
-      room.onTick(() => {
-        this.ticks.set(id, room.sim.tick);
-        this.scheduleFlush();
-      });
-      room.onClose((reason) => {
-        this.rooms.delete(id);
-        this.windows.delete(id);
-        this.ticks.delete(id);
-        for (const [member, m] of this.members) if (m.room === room) this.members.delete(member);
-        this.postInOrder({ t: 'closed', room: id, reason });
-      });
+      const room = await openRoom({ id, scenario, params, seed, netMode }, { factory: this.opts.factory, ...this.roomOptions() });
+      this.host(room);
       room.start();
-      this.reply(req, { info: room.info(), recordingPath: this.opts.factory.recordingPath?.(id) ?? null });
+      this.reply(req, { info: room.info(), recordingPath: this.opts.factory.recordingPath(id) });
     } catch (error) {
+      this.fail(req, error);
+    }
+  }
+
+  private roomOptions(): Omit<OpenRoomOptions, 'factory'> {
+    const { config } = this.opts;
+    return {
+      clock: this.opts.clock,
+      metrics: this.opts.metrics,
+      logger: this.opts.logger,
+      snapshotRateHz: config.snapshotRateHz,
+      maxClientsPerRoom: config.maxClientsPerRoom,
+      maxCatchUpTicks: config.maxCatchUpTicks,
+      maxInputLeadTicks: config.maxInputLeadTicks,
+      pauseWhenEmpty: config.pauseWhenEmpty,
+      catchUp: this.catchUp,
+      phases: this.phases,
+    };
+  }
+
+  private host(room: Room): void {
+    const id = room.id;
+    this.rooms.set(id, room);
+    room.onTick(() => {
+      this.ticks.set(id, room.sim.tick);
+      this.scheduleFlush();
+    });
+    room.onClose((reason) => {
+      this.forgetRoom(room);
+      this.postInOrder({ t: 'closed', room: id, reason });
+    });
+  }
+
+  private forgetRoom(room: Room): void {
+    this.rooms.delete(room.id);
+    this.windows.delete(room.id);
+    this.ticks.delete(room.id);
+    for (const [member, m] of this.members) if (m.room === room) this.members.delete(member);
+  }
+
+  // Stops the room between two ticks; every byte it sent goes out before the reply that hands it over.
+  private async exportRoom(req: number, id: string): Promise<void> {
+    try {
+      const room = this.rooms.get(id);
+      if (!room) throw new RoomError(ErrorCode.RoomNotFound, `room ${id} is not open in this worker`);
+      const entries = [...this.members].filter(([, m]) => m.room === room);
+      const carry = await room.handOff();
+      const members: CarriedMember[] = entries.map(([member, m]) => ({ member, playerId: m.seat.playerId, predict: m.delivering.predictState }));
+      this.forgetRoom(room);
+      this.reply(req, { carry, members } satisfies MovingRoom);
+    } catch (error) {
+      this.fail(req, error);
+    }
+  }
+
+  // Goes on with a room exported by another worker: the simulation from its checkpoint (checked against its hash), the
+  // log appended to where it stopped, the members served from the next tick without a new welcome.
+  private async importRoom(req: number, moving: MovingRoom): Promise<void> {
+    const { carry } = moving;
+    let built: (RoomSimulationBuild & { sim: Simulation }) | null = null;
+    const ready = this.prepared.get(carry.id);
+    this.prepared.delete(carry.id);
+    try {
+      const factory: RecordingFactory = this.opts.factory;
+      const b = await (ready ?? factory.createSimulation(carry.scenario, carry.params, carry.seed));
+      built = b;
+      if (this.rooms.has(carry.id)) throw new RoomError(ErrorCode.Internal, `room ${carry.id} is already open in this worker`);
+      b.sim.restoreCheckpointBytes(carry.checkpoint);
+      if (b.sim.tick !== carry.tick || b.sim.stateHash() !== carry.hash) throw new Error(`room ${carry.id}: the restored checkpoint is at tick ${b.sim.tick} with hash ${b.sim.stateHash()}, expected tick ${carry.tick} with ${carry.hash}`);
+      const spec = { id: carry.id, scenario: carry.scenario, params: carry.params, seed: carry.seed, netMode: carry.netModeRequested };
+      const recorder = carry.log ? await factory.continueRecording({ ...spec, sim: b.sim }, carry.log) : null;
+      const room = roomAround(spec, b, recorder, this.roomOptions(), carry.predictInputs ?? undefined, carry);
+      built = null; // the room owns the simulation now
+      for (const c of moving.members) {
+        const sink = new RemoteSink(c.member, this);
+        const delivering = new DeliveringMember(sink, room.snapshots, this.opts.metrics, room.predictFeed);
+        delivering.encoder = new SnapshotEncoder(room.snapshots.format);
+        delivering.continueStream(c.predict);
+        if (room.reattach(c.playerId, delivering) === null) continue;
+        this.members.set(c.member, { room, seat: seatOf(room, c.playerId, delivering), sink, delivering });
+      }
+      this.host(room);
+      room.start();
+      this.reply(req, { info: room.info(), recordingPath: factory.recordingPath(carry.id) } satisfies OpenedRoom);
+    } catch (error) {
+      built?.sim.destroy();
       this.fail(req, error);
     }
   }

@@ -82,4 +82,19 @@ describe('InputBuffer', () => {
     expect(buf.take(3)).toEqual({ command: hold, repeated: true });
     expect(buf.take(4)).toEqual({ command: cmd(-20), repeated: false });
   });
+  it('goes on from its exported state exactly as the buffer it came from (a room moving threads)', () => {
+    const a = new InputBuffer(0, 10);
+    const c = (moveX: number) => ({ ...NEUTRAL_INPUT, moveX });
+    a.offer(0, c(1));
+    a.offer(3, c(3));
+    a.take(0);
+    a.take(1); // repeated
+    const b = InputBuffer.fromState(structuredClone(a.exportState()));
+    expect(b.offer(0, c(9))).toBe(OfferResult.Duplicate);
+    expect(b.offer(1, c(9))).toBe(OfferResult.Late);
+    expect(b.offer(13, c(9))).toBe(OfferResult.TooFar); // the window (10) counts from the next tick, 2
+    expect(b.take(2)).toEqual({ command: c(1), repeated: true });
+    expect(b.take(3)).toEqual({ command: c(3), repeated: false });
+    expect(b.stats).toMatchObject({ accepted: 2, repeated: 2, duplicates: 1, late: 1, tooFar: 1 });
+  });
 });

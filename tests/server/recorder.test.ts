@@ -113,4 +113,31 @@ describe('recorder', () => {
       expect(checkpoints).toEqual([[4, 1], [8, 2], [10, 3]]);
     }
   });
+  it.each(['tick', 'interval', 'off'] as const)('hands a log over mid-session and the recording that continues it ends one whole log (durability %s)', async (mode) => {
+    const dir = join(root, `handoff-${mode}`);
+    const base = { dir, roomId: 'moved', scenario: 's', params: {}, seed: 1, logger: silentLogger(), hashEveryTicks: 2, durability: { mode } };
+    const first = await createRoomRecorder({ ...base, startTick: 0, initialHash: '0000000000000000' });
+    const sent: number[] = [];
+    for (let t = 0; t < 3; t++) {
+      first.append(record(t));
+      first.afterStep(t + 1, () => (t + 1).toString(16).padStart(16, '0'));
+      if (first.release) first.release(t, () => sent.push(t));
+      else sent.push(t);
+    }
+    const log = await first.handOff!();
+    // Every send held for durability went out before the log changed hands.
+    expect(sent).toEqual([0, 1, 2]);
+    expect(log).toMatchObject({ path: first.path, ticks: 3 });
+    first.append(record(3)); // too late for this thread: nothing is written
+    const next = await createRoomRecorder({ ...base, startTick: 3, initialHash: '', continueLog: log! });
+    for (let t = 3; t < 6; t++) {
+      next.append(record(t));
+      next.afterStep(t + 1, () => (t + 1).toString(16).padStart(16, '0'));
+    }
+    await next.close(6, '0000000000000006');
+    const read = readLogBytes(new Uint8Array(readFileSync(first.path)));
+    expect(read.outcome.status).toBe('complete');
+    expect(read.entries.flatMap((e) => (e.type === 'tick' ? [e.record] : []))).toEqual(Array.from({ length: 6 }, (_, t) => record(t)));
+    expect(read.entries.flatMap((e) => (e.type === 'hash' ? [e.tick] : []))).toEqual([0, 2, 4, 6]);
+  });
 });
