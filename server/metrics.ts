@@ -1,6 +1,7 @@
 // The server's Prometheus metrics: one prom-client Registry per server instance (so several servers in one process,
 // as in tests, never share counters), the metric objects rooms and sessions update, and the text for GET /metrics.
-import { AggregatorRegistry, Counter, Gauge, Histogram, Registry, collectDefaultMetrics, type MetricObjectWithValues, type MetricValue } from 'prom-client';
+import { AggregatorRegistry, Gauge, Histogram, Registry, collectDefaultMetrics, type Counter, type MetricObjectWithValues, type MetricValue } from 'prom-client';
+import { talliedCounter } from './tallied-counter.ts';
 
 const TICK_BUCKETS_SECONDS = [0.0005, 0.001, 0.002, 0.004, 0.008, 0.0125, 0.01667, 0.025, 0.05, 0.1, 0.25];
 const SNAPSHOT_BYTE_BUCKETS = [64, 256, 1024, 4096, 16384, 65536, 262144];
@@ -81,8 +82,9 @@ export function createMetrics(opts: { processMetrics?: boolean; prefix?: string 
   const p = opts.prefix ?? 'taos_';
   const registers = [registry];
   if (opts.processMetrics ?? true) collectDefaultMetrics({ register: registry, prefix: p });
-  const counter = (name: string, help: string, labelNames: string[] = []): Counter<string> =>
-    new Counter({ name: p + name, help, labelNames, registers });
+  // Counters are summed in place and handed to prom-client when it collects (talliedCounter): several are counted per
+  // message or per member and tick.
+  const counter = (name: string, help: string, labelNames: string[] = []): Counter<string> => talliedCounter({ name: p + name, help, labelNames, registers });
   const gauge = (name: string, help: string): Gauge<string> => new Gauge({ name: p + name, help, registers });
   let heapSource: () => Iterable<RoomHeapUsage> = () => [];
   const wasmHeap = new Gauge({
