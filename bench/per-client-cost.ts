@@ -5,7 +5,7 @@
 // per client per tick is the slope between the two counts, for the whole tick and for its network part (taking client
 // messages, delivering events and snapshots: CPU time of each call). Sockets are not in it (per-client-writes.ts).
 // With --against DIR (a checkout of another commit, e.g. `git archive main | tar -x -C DIR`, node_modules linked), DIR's
-// rig runs in alternating rounds, so before/after share the machine's load.
+// rigs run beside these, a tick of each in turn, so before/after share the machine's load tick by tick.
 // Run: node_modules/.bin/node bench/per-client-cost.ts [--clients 16,96] [--rounds 3] [--ticks 300] [--against DIR]
 import { loadavg } from 'node:os';
 import { join, resolve } from 'node:path';
@@ -34,7 +34,7 @@ interface Side {
   networkCpuUs: () => number;
 }
 
-/** One measured run: CPU ms per server tick, and the network part's wall ms per tick. */
+/** One rig's measured ticks: CPU ms per server tick, its network part, client messages per client per tick. */
 interface Run {
   clients: number;
   cpuMsPerTick: number;
@@ -42,33 +42,43 @@ interface Run {
   messagesPerClientPerTick: number;
 }
 
-async function run(s: Side, clients: number): Promise<Run> {
-  const rig = await s.rig.startServerRig({ scenario: 'shape-rain', params: { count: 300 }, startBytes: null, clients, snapshotRateHz: 30, oneWayTicks: 2, hashEveryTicks: 60 });
+type StartedRig = Awaited<ReturnType<typeof Rig.startServerRig>>;
+
+/**
+ * Every side at both counts at once, a tick of each in turn (the order rotating), so a burst of load on this shared
+ * machine hits all of them alike: per rig, the CPU time of its serverTick() and of the network calls inside it.
+ */
+async function runAll(sides: readonly Side[]): Promise<Map<string, Run[]>> {
+  const rigs: Array<{ side: Side; clients: number; rig: StartedRig; cpuUs: number; networkUs: number; received: number }> = [];
   try {
-    for (let t = 0; t < warmTicks; t++) {
-      rig.serverTick();
-      await rig.clientTick();
+    for (const side of sides) {
+      for (const clients of counts) {
+        const rig = await side.rig.startServerRig({ scenario: 'shape-rain', params: { count: 300 }, startBytes: null, clients, snapshotRateHz: 30, oneWayTicks: 2, hashEveryTicks: 60 });
+        rigs.push({ side, clients, rig, cpuUs: 0, networkUs: 0, received: 0 });
+      }
     }
-    rig.takeParts();
-    let cpuUs = 0;
-    const received0 = s.received();
-    const network0 = s.networkCpuUs();
-    for (let t = 0; t < ticks; t++) {
-      const c0 = process.cpuUsage();
-      rig.serverTick();
-      const c = process.cpuUsage(c0);
-      cpuUs += c.user + c.system;
-      await rig.clientTick();
+    for (let t = 0; t < warmTicks + ticks; t++) {
+      for (let k = 0; k < rigs.length; k++) {
+        const r = rigs[(k + t) % rigs.length];
+        const n0 = r.side.networkCpuUs();
+        const m0 = r.side.received();
+        const c0 = process.cpuUsage();
+        r.rig.serverTick();
+        const c = process.cpuUsage(c0);
+        if (t >= warmTicks) {
+          r.cpuUs += c.user + c.system;
+          r.networkUs += r.side.networkCpuUs() - n0;
+          r.received += r.side.received() - m0;
+        }
+        await r.rig.clientTick();
+      }
     }
-    return {
-      clients,
-      cpuMsPerTick: cpuUs / 1000 / ticks,
-      networkMsPerTick: (s.networkCpuUs() - network0) / 1000 / ticks,
-      messagesPerClientPerTick: (s.received() - received0) / clients / ticks,
-    };
   } finally {
-    await rig.close();
+    for (const r of rigs) await r.rig.close();
   }
+  const out = new Map<string, Run[]>(sides.map((s) => [s.name, []]));
+  for (const r of rigs) out.get(r.side.name)!.push({ clients: r.clients, cpuMsPerTick: r.cpuUs / 1000 / ticks, networkMsPerTick: r.networkUs / 1000 / ticks, messagesPerClientPerTick: r.received / r.clients / ticks });
+  return out;
 }
 
 async function side(name: string, root: string): Promise<Side> {
@@ -104,13 +114,9 @@ if (againstDir) sides.push(await side(againstDir, resolve(againstDir)));
 const results = new Map<string, Run[]>(sides.map((s) => [s.name, []]));
 const load0 = loadavg()[0];
 for (let r = 0; r < rounds; r++) {
-  for (let k = 0; k < sides.length; k++) {
-    const s = sides[(k + r) % sides.length];
-    for (const n of counts) {
-      const x = await run(s, n);
-      results.get(s.name)!.push(x);
-      console.error(`round ${r + 1} ${s.name} ${n} clients: ${x.cpuMsPerTick.toFixed(3)} ms CPU/tick, network part ${x.networkMsPerTick.toFixed(3)} ms CPU/tick, ${x.messagesPerClientPerTick.toFixed(2)} msg/client/tick`);
-    }
+  for (const [name, runs] of await runAll(sides)) {
+    results.get(name)!.push(...runs);
+    for (const x of runs) console.error(`round ${r + 1} ${name} ${x.clients} clients: ${x.cpuMsPerTick.toFixed(3)} ms CPU/tick, network part ${x.networkMsPerTick.toFixed(3)} ms CPU/tick, ${x.messagesPerClientPerTick.toFixed(2)} msg/client/tick`);
   }
 }
 const [lo, hi] = counts;
