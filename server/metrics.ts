@@ -1,6 +1,7 @@
 // The server's Prometheus metrics: one prom-client Registry per server instance (so several servers in one process,
 // as in tests, never share counters), the metric objects rooms and sessions update, and the text for GET /metrics.
-import { AggregatorRegistry, Counter, Gauge, Histogram, Registry, collectDefaultMetrics, type MetricObjectWithValues, type MetricValue } from 'prom-client';
+import { AggregatorRegistry, Gauge, Histogram, Registry, collectDefaultMetrics, type Counter, type MetricObjectWithValues, type MetricValue } from 'prom-client';
+import { talliedCounter } from './tallied-counter.ts';
 
 const TICK_BUCKETS_SECONDS = [0.0005, 0.001, 0.002, 0.004, 0.008, 0.0125, 0.01667, 0.025, 0.05, 0.1, 0.25];
 const SNAPSHOT_BYTE_BUCKETS = [64, 256, 1024, 4096, 16384, 65536, 262144];
@@ -81,9 +82,9 @@ export function createMetrics(opts: { processMetrics?: boolean; prefix?: string 
   const p = opts.prefix ?? 'taos_';
   const registers = [registry];
   if (opts.processMetrics ?? true) collectDefaultMetrics({ register: registry, prefix: p });
-  const counter = (name: string, help: string, labelNames: string[] = []): Counter<string> =>
-    new Counter({ name: p + name, help, labelNames, registers });
-  const tally = (name: string, help: string, labelName?: string): Counter<string> => tallyCounter(p + name, help, registers, labelName);
+  // Counters are summed in place and handed to prom-client when it collects (talliedCounter): several are counted per
+  // message or per member and tick.
+  const counter = (name: string, help: string, labelNames: string[] = []): Counter<string> => talliedCounter({ name: p + name, help, labelNames, registers });
   const gauge = (name: string, help: string): Gauge<string> => new Gauge({ name: p + name, help, registers });
   let heapSource: () => Iterable<RoomHeapUsage> = () => [];
   const wasmHeap = new Gauge({
@@ -123,23 +124,23 @@ export function createMetrics(opts: { processMetrics?: boolean; prefix?: string 
     },
     tickDuration: new Histogram({ name: `${p}tick_duration_seconds`, help: 'Wall time of one room tick (inputs, physics, snapshots, sends)', buckets: TICK_BUCKETS_SECONDS, registers }),
     physicsStep: new Histogram({ name: `${p}physics_step_seconds`, help: 'Wall time of Simulation.step in one room tick', buckets: TICK_BUCKETS_SECONDS, registers }),
-    ticks: tally('ticks_total', 'Room ticks simulated'),
+    ticks: counter('ticks_total', 'Room ticks simulated'),
     tickOverruns: counter('tick_overruns_total', 'Room ticks that took longer than the tick period'),
     ticksSkipped: counter('ticks_skipped_total', 'Ticks given up (slowdown) because a room could not catch up'),
     rooms: gauge('rooms', 'Open rooms'),
     clients: gauge('clients', 'Connected WebSocket clients'),
     players: gauge('players', 'Players in rooms'),
-    inputsLate: tally('inputs_late_total', 'Inputs stamped for a tick that was already applied (dropped)'),
+    inputsLate: counter('inputs_late_total', 'Inputs stamped for a tick that was already applied (dropped)'),
     inputsDropped: counter('inputs_dropped_total', 'Inputs dropped for a reason other than being late', ['reason']),
-    inputsRepeated: tally('inputs_repeated_total', "Player ticks that repeated the last input because none had arrived"),
-    inputsAccepted: tally('inputs_accepted_total', 'Inputs stored for a future tick'),
+    inputsRepeated: counter('inputs_repeated_total', "Player ticks that repeated the last input because none had arrived"),
+    inputsAccepted: counter('inputs_accepted_total', 'Inputs stored for a future tick'),
     inputsClamped: counter('inputs_clamped_total', 'Input commands clamped into range by validation'),
     snapshotBytes: new Histogram({ name: `${p}snapshot_bytes`, help: 'Encoded size of one snapshot message', buckets: SNAPSHOT_BYTE_BUCKETS, registers }),
-    snapshotsSent: tally('snapshots_sent_total', 'Snapshots sent', 'kind'),
-    snapshotsSkipped: tally('snapshots_skipped_total', "Snapshots skipped because the client's socket buffer was backed up"),
-    bytesSent: tally('bytes_sent_total', 'Bytes sent to clients (all messages)'),
-    bytesReceived: tally('bytes_received_total', 'Bytes received from clients'),
-    messagesReceived: tally('messages_received_total', 'Messages received from clients'),
+    snapshotsSent: counter('snapshots_sent_total', 'Snapshots sent', ['kind']),
+    snapshotsSkipped: counter('snapshots_skipped_total', "Snapshots skipped because the client's socket buffer was backed up"),
+    bytesSent: counter('bytes_sent_total', 'Bytes sent to clients (all messages)'),
+    bytesReceived: counter('bytes_received_total', 'Bytes received from clients'),
+    messagesReceived: counter('messages_received_total', 'Messages received from clients'),
     badMessages: counter('bad_messages_total', 'Messages rejected by validation', ['reason']),
     disconnects: counter('disconnects_total', 'Clients disconnected by the server', ['reason']),
     connections: counter('connections_total', 'WebSocket connections accepted'),
@@ -149,44 +150,6 @@ export function createMetrics(opts: { processMetrics?: boolean; prefix?: string 
     uncaughtErrors: counter('uncaught_errors_total', "Exceptions and promise rejections caught by the serving process's last-resort handler", ['kind']),
     connectionsRefused: counter('connections_refused_total', 'WebSocket upgrades refused before a session started', ['reason']),
   };
-}
-
-/**
- * A Counter for the hot path (per message, per input, per tick): inc() adds to a plain tally, without the label hash
- * and result objects prom-client allocates on every call, and the tallies are folded into the exported value when
- * the registry is read. At most one label; label values must be strings.
- */
-export function tallyCounter(name: string, help: string, registers: Registry[], labelName?: string): Counter<string> {
-  let plain = 0;
-  const byLabel = new Map<string, number>();
-  const counter = new Counter({
-    name,
-    help,
-    labelNames: labelName === undefined ? [] : [labelName],
-    registers,
-    collect() {
-      if (plain > 0) fold(plain);
-      plain = 0;
-      for (const [value, n] of byLabel) if (n > 0) fold({ [labelName as string]: value }, n);
-      byLabel.clear();
-    },
-  });
-  const fold = counter.inc.bind(counter) as (labelsOrValue?: Record<string, string> | number, value?: number) => void;
-  const inc = (labelsOrValue?: Record<string, string | number> | number, value?: number): void => {
-    if (labelsOrValue === undefined || typeof labelsOrValue === 'number') {
-      const n = labelsOrValue ?? 1;
-      if (!(n >= 0) || !Number.isFinite(n)) throw new TypeError(`${name}: a counter only goes up by a finite amount, got ${n}`);
-      plain += n;
-      return;
-    }
-    const n = value ?? 1;
-    if (!(n >= 0) || !Number.isFinite(n)) throw new TypeError(`${name}: a counter only goes up by a finite amount, got ${n}`);
-    if (labelName === undefined) throw new Error(`${name}: this counter has no labels`);
-    const key = String(labelsOrValue[labelName]);
-    byLabel.set(key, (byLabel.get(key) ?? 0) + n);
-  };
-  counter.inc = inc as Counter<string>['inc'];
-  return counter;
 }
 
 /** The Prometheus text exposition of a registry, with its content type. */

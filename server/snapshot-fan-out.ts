@@ -35,6 +35,10 @@ interface FrameWork {
   readonly frame: WorldFrame;
   readonly quantized: QuantizedFrame;
   readonly shared: SharedFrameWork;
+  /** The room's game state version at this frame (null: the scenario declares none): read once, not per member. */
+  readonly stateVersion: number | null;
+  /** Framed snapshot messages without descriptors, by baseline tick (−1: full) and whether the state rides along. */
+  readonly plain: Map<number, Uint8Array>;
   /** Framed snapshot messages by baseline tick and the descriptors they carry. */
   readonly messages: Map<string, Uint8Array>;
 }
@@ -94,15 +98,21 @@ export class SnapshotFanOut {
     const encoded = encoder.encode(work.quantized, (id) => work.frame.descriptors?.get(id) ?? this.source.describe(id), work.shared);
     // The whole game state rides along when it changed since the member's last snapshot (the link is ordered and
     // reliable, so what a member got last is what it holds).
-    const stateVersion = this.source.gameStateVersion?.() ?? null;
+    const stateVersion = work.stateVersion;
     const withState = stateVersion !== null && stateVersion !== heldStateVersion;
-    let key = `${encoded.baselineTick ?? -1}${withState ? 's' : ''}`;
-    for (const d of encoded.descriptors) key += `,${d.id}`;
-    let message = work.messages.get(key);
+    // Most members share a baseline and lack no descriptor: a number keys their message, no string is built.
+    const plainKey = encoded.descriptors.length === 0 ? (encoded.baselineTick ?? -1) * 2 + (withState ? 1 : 0) : null;
+    let key = '';
+    if (plainKey === null) {
+      key = `${encoded.baselineTick ?? -1}${withState ? 's' : ''}`;
+      for (const d of encoded.descriptors) key += `,${d.id}`;
+    }
+    let message = plainKey === null ? work.messages.get(key) : work.plain.get(plainKey);
     if (!message) {
       const state = withState ? this.stateValues(stateVersion) : undefined;
       message = encodeServerMessage({ type: 'snapshot', bytes: encoded.bytes, descriptors: encoded.descriptors, ...(state ? { state } : {}) });
-      work.messages.set(key, message);
+      if (plainKey === null) work.messages.set(key, message);
+      else work.plain.set(plainKey, message);
     }
     return { message, encoded, stateVersion: stateVersion ?? -1 };
   }
@@ -118,7 +128,7 @@ export class SnapshotFanOut {
     const previous = last !== null && last.frame.tick < frame.tick ? { read: last.bodies, frame: last.frame } : undefined;
     const quantized = quantizeFrame(this.format, frame.tick, frame.bodies, frame.characters, { includeStatic: (id) => !this.source.isSceneStatic(id), previous });
     this.last = { bodies: frame.bodies, frame: quantized };
-    this.work = { frame, quantized, shared: new SharedFrameWork(), messages: new Map() };
+    this.work = { frame, quantized, shared: new SharedFrameWork(), stateVersion: this.source.gameStateVersion?.() ?? null, plain: new Map(), messages: new Map() };
     return this.work;
   }
 }

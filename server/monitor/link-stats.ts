@@ -11,7 +11,6 @@ const SNAPSHOT_OPCODE: number = ServerOpcode.Snapshot;
  * those headers: the session hands snapshots on as bytes.
  */
 export function snapshotTick(bytes: Uint8Array): number | null {
-  const view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength);
   let i = 0;
   const head = bytes[i++];
   if (head === undefined) return null;
@@ -21,16 +20,17 @@ export function snapshotTick(bytes: Uint8Array): number | null {
   if (bytes[i++] !== SNAPSHOT_OPCODE) return null;
   const bin = bytes[i++];
   let length: number;
-  if (bin === 0xc4 && i + 1 <= bytes.length) length = view.getUint8(i++);
+  // Read byte by byte: no DataView allocated per member and snapshot.
+  if (bin === 0xc4 && i + 1 <= bytes.length) length = bytes[i++];
   else if (bin === 0xc5 && i + 2 <= bytes.length) {
-    length = view.getUint16(i);
+    length = (bytes[i] << 8) | bytes[i + 1];
     i += 2;
   } else if (bin === 0xc6 && i + 4 <= bytes.length) {
-    length = view.getUint32(i);
+    length = (bytes[i] * 0x1000000 + ((bytes[i + 1] << 16) | (bytes[i + 2] << 8) | bytes[i + 3])) >>> 0;
     i += 4;
   } else return null;
   if (length < 4 || i + 4 > bytes.length) return null;
-  return view.getUint32(i, true);
+  return (bytes[i] | (bytes[i + 1] << 8) | (bytes[i + 2] << 16) | (bytes[i + 3] << 24)) >>> 0;
 }
 
 /** How many sent snapshots wait for their ack (older ones are forgotten: their ack no longer measures anything). */

@@ -11,6 +11,9 @@ import type { QuantizedFrame } from './snapshot-frame.ts';
 export class TickHistory<T> {
   readonly capacity: number;
   private readonly entries = new Map<number, T>();
+  /** Whether every tick was stored above all before it (then the map's first key is the oldest). */
+  private sorted = true;
+  private newest = -Infinity;
 
   constructor(capacity: number) {
     if (!Number.isInteger(capacity) || capacity < 1) throw new Error(`TickHistory: capacity must be a positive integer, got ${capacity}`);
@@ -19,10 +22,14 @@ export class TickHistory<T> {
 
   /** Stores an entry (replacing one with the same tick) and evicts the oldest ticks beyond capacity. */
   set(tick: number, entry: T): void {
+    // Ticks stored in rising order keep the map's insertion order sorted: its first key is then the oldest.
+    if (!this.entries.has(tick) && tick < this.newest) this.sorted = false;
+    this.newest = Math.max(this.newest, tick);
     this.entries.set(tick, entry);
     while (this.entries.size > this.capacity) {
       let oldest = Infinity;
-      for (const t of this.entries.keys()) if (t < oldest) oldest = t;
+      if (this.sorted) oldest = this.entries.keys().next().value!;
+      else for (const t of this.entries.keys()) if (t < oldest) oldest = t;
       this.entries.delete(oldest);
     }
   }
@@ -40,6 +47,8 @@ export class TickHistory<T> {
   /** Forgets everything. */
   clear(): void {
     this.entries.clear();
+    this.sorted = true;
+    this.newest = -Infinity;
   }
 }
 

@@ -1,31 +1,8 @@
 // Tests for server/metrics.ts: per-server registries and the Prometheus text they render.
 import { describe, expect, it } from 'vitest';
-import { Registry } from 'prom-client';
-import { createMetrics, renderMetrics, tallyCounter } from '../../server/metrics.ts';
+import { createMetrics, renderMetrics } from '../../server/metrics.ts';
 
 describe('metrics', () => {
-  it('folds hot-path tallies into the exported counters each time the registry is read, by label value', async () => {
-    const registry = new Registry();
-    const sent = tallyCounter('t_sent_total', 'sent', [registry], 'kind');
-    const bytes = tallyCounter('t_bytes_total', 'bytes', [registry]);
-    sent.inc({ kind: 'delta' });
-    sent.inc({ kind: 'delta' }, 2);
-    sent.inc({ kind: 'full' });
-    bytes.inc(100);
-    bytes.inc();
-    let body = await registry.metrics();
-    expect(body).toContain('t_sent_total{kind="delta"} 3');
-    expect(body).toContain('t_sent_total{kind="full"} 1');
-    expect(body).toContain('t_bytes_total 101');
-    bytes.inc(9);
-    body = await registry.metrics();
-    expect(body).toContain('t_bytes_total 110');
-    expect(body).toContain('t_sent_total{kind="delta"} 3');
-    expect(() => bytes.inc(-1)).toThrow(/only goes up/);
-    expect(() => bytes.inc(Number.NaN)).toThrow(/only goes up/);
-  });
-
-
   it('renders the tick, input, snapshot and traffic metrics in Prometheus format', async () => {
     const m = createMetrics({ processMetrics: false });
     m.tickDuration.observe(0.004);

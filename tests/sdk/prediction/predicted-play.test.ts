@@ -17,6 +17,7 @@ import { Prng } from '../../../shared/sim/prng.ts';
 import { commandYawRadians } from '../../../shared/sim/controls.ts';
 import { Button, type InputCommand } from '../../../shared/sim/input.ts';
 import type { SimEvent } from '../../../shared/sim/types.ts';
+import { TICK_MS } from '../../../shared/tick-rate.ts';
 import { MEMORY_URL, startHarness, type Harness } from '../../server/harness.ts';
 
 const tmp = mkdtempSync(join(tmpdir(), 'taos-predict-'));
@@ -74,8 +75,9 @@ describe('predicted play', () => {
       after = ann.predicted()!;
       await new Promise((resolve) => setImmediate(resolve));
     }
-    // At most one input-loop period (half a tick) after the key.
-    expect(h.clock.nowMs() - pressedMs).toBeLessThanOrEqual(9);
+    // The next tick the input loop fixes carries the command: at most one tick after the key. (Half a tick held only
+    // at one phase of the link's random delays: with the key pressed 4 or 8 ms later the wait was 15 and 11 ms.)
+    expect(h.clock.nowMs() - pressedMs).toBeLessThanOrEqual(Math.ceil(TICK_MS));
     expect(after.tick).toBeGreaterThan(before.tick);
     const own = after.characters.find((c) => c.playerId === ann.playerId)!;
     expect(own.yaw).toBeCloseTo(commandYawRadians(turn), 9);

@@ -19,6 +19,21 @@ function frameOf(world: SyntheticWorld): QuantizedFrame {
 }
 
 describe('snapshot-stream', () => {
+  it('keeps the newest ticks of a history, in order or after late entries', () => {
+    const inOrder = new TickHistory<number>(3);
+    for (let t = 10; t < 20; t++) inOrder.set(t, t);
+    expect([17, 18, 19].map((t) => inOrder.get(t))).toEqual([17, 18, 19]);
+    expect(inOrder.get(16)).toBeUndefined();
+    const late = new TickHistory<number>(3);
+    for (const t of [10, 11, 12, 5, 13, 14, 3, 15]) late.set(t, t);
+    // A late, stale tick is the first to go: the three newest stay.
+    expect([13, 14, 15].map((t) => late.get(t))).toEqual([13, 14, 15]);
+    expect(late.size).toBe(3);
+    late.clear();
+    for (let t = 1; t <= 5; t++) late.set(t, t);
+    expect([3, 4, 5].map((t) => late.get(t))).toEqual([3, 4, 5]);
+  });
+
   it('sends full snapshots until an ack arrives, then deltas against the newest acked tick', () => {
     const world = new SyntheticWorld({ seed: 1 });
     const enc = new SnapshotEncoder(format);
