@@ -280,7 +280,7 @@ export class ClientSession implements MemberSink, ResumeHolder {
           this.refuse(ErrorCode.UnexpectedMessage, 'game message before the welcome');
           return;
         }
-        const refused = checkGameMessage(msg.name, msg.payload, this.seat.welcome.scenario.game?.messages ?? []) ?? this.seat.offerMessage(msg.name, msg.payload);
+        const refused = checkGameMessage(msg.name, msg.payload, this.seat.welcome.scenario.game?.messages ?? []) ?? this.seat.offerMessage(msg.name, msg.payload, msg.tick);
         if (refused !== null) this.refuse(ErrorCode.BadMessage, `game: ${refused}`);
         return;
       }

@@ -19,7 +19,7 @@ export interface RoomThreadLink {
   detach(room: string, playerId: number): void;
   close(room: string, reason: string): Promise<void>;
   queueInput(member: number, tick: number, command: InputCommand): void;
-  queueMessage(member: number, name: string, payload: readonly number[]): void;
+  queueMessage(member: number, name: string, payload: readonly number[], tick?: number): void;
   queueAck(member: number, tick: number): void;
   /** Serve the member in predict mode (again: a resync) or on snapshots. */
   queueNetMode(member: number, mode: NetMode): void;
@@ -128,8 +128,8 @@ export class RemoteRoom implements HostedRoom {
         thread.queueInput(member, tick, command);
         return null;
       },
-      offerMessage: (name, payload) => {
-        thread.queueMessage(member, name, payload);
+      offerMessage: (name, payload, tick) => {
+        thread.queueMessage(member, name, payload, tick);
         return null;
       },
       acknowledge: (tick) => thread.queueAck(member, tick),
