@@ -1,8 +1,9 @@
-// `bots --url ws://127.0.0.1:8080 --count N [--room ID] [--seconds S] [--seed SEED] [--predict]`: headless scripted
-// bots that join a running server through the client library and play until the time is up (or Ctrl+C), then report
-// traffic (and, with --predict, their rollback numbers and desyncs).
+// `bots --url ws://127.0.0.1:8080 --count N [--room ID] [--seconds S] [--seed SEED] [--predict [--scenario FILE]]`:
+// headless scripted bots that join a running server through the client library and play until the time is up (or
+// Ctrl+C), then report traffic (and, with --predict, their rollback numbers and desyncs).
 import { startBots, type BotsReport } from './bots.ts';
 import { nodePredictOptions } from './predict-options.ts';
+import { scenarioFromArg } from './scenario-setup.ts';
 import type { ParsedArgs } from './args.ts';
 import { ExitCode, UsageError, type CliIo, type CommandSpec } from './command.ts';
 
@@ -27,13 +28,16 @@ async function run(args: ParsedArgs, io: CliIo): Promise<number> {
   const room = args.string('room') ?? null;
   if (room !== null && !/^[A-Za-z0-9_-]{1,64}$/.test(room)) throw new UsageError('--room must be 1-64 characters of A-Z a-z 0-9 _ -');
   const seconds = args.number('seconds') ?? null;
+  const scenarioArg = args.string('scenario');
+  if (scenarioArg !== undefined && !args.flag('predict')) throw new UsageError('--scenario is for --predict (the bots simulate that scenario themselves)');
+  const own = scenarioArg === undefined ? [] : [await scenarioFromArg(scenarioArg)];
   const botsRun = startBots({
     url,
     count: args.number('count')!,
     room,
     seconds,
     seed: args.string('seed') ?? 1,
-    predict: args.flag('predict') ? nodePredictOptions() : undefined,
+    predict: args.flag('predict') ? nodePredictOptions({}, own) : undefined,
     progress: (line) => io.stderr(`${line}\n`),
   });
   const onSignal = (): void => botsRun.stop();
@@ -72,6 +76,7 @@ export const botsCommand: CommandSpec = {
     { name: 'seed', kind: 'string', valueName: 'SEED', description: 'seed of the bots’ scripts; default 1' },
     { name: 'json', kind: 'boolean', description: 'print the report as JSON' },
     { name: 'predict', kind: 'boolean', description: 'run the simulation in each bot (predicted play) where the room offers predict mode' },
+    { name: 'scenario', kind: 'string', valueName: 'FILE', description: "with --predict: the room's scenario module (your own game); built-ins need none" },
   ],
   run,
 };

@@ -210,8 +210,9 @@ export class LinkSession {
 
   /** Sends a game message now (after the welcome). */
   sendGameMessage(name: string, payload: number[]): void {
-    this.send({ type: 'game', name, payload });
-    this.predictSession?.onOwnMessage(name, payload);
+    // A predicting client applies it on its next local tick and asks the server for the same tick.
+    const tick = this.predictSession?.onOwnMessage(name, payload) ?? null;
+    this.send(tick === null ? { type: 'game', name, payload } : { type: 'game', name, payload, tick });
   }
 
   /** Sets the command for ticks from now on. */

@@ -39,7 +39,7 @@ export interface Seat {
    * Queues a game message (its kind already checked against the welcome's schema) for the room's next tick; returns
    * why the room refused it, or null (accepted, or not known here: a room in a worker drops what it refuses).
    */
-  offerMessage(name: string, payload: readonly number[]): string | null;
+  offerMessage(name: string, payload: readonly number[], tick?: number): string | null;
   /** The client acknowledged the snapshot of `tick`. */
   acknowledge(tick: number): void;
   /**

@@ -81,7 +81,7 @@ export class PlayerInbox {
 
   /** A game message of a kind the scenario declares, for the room's next tick. */
   game(msg: GameMessageMessage): InboxVerdict {
-    const refused = checkGameMessage(msg.name, msg.payload, this.seat.welcome.scenario.game?.messages ?? []) ?? this.seat.offerMessage(msg.name, msg.payload);
+    const refused = checkGameMessage(msg.name, msg.payload, this.seat.welcome.scenario.game?.messages ?? []) ?? this.seat.offerMessage(msg.name, msg.payload, msg.tick);
     return refused === null ? null : { refuse: ErrorCode.BadMessage, message: `game: ${refused}` };
   }
 

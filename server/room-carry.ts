@@ -34,7 +34,8 @@ export interface RoomCarry {
   players: CarriedPlayer[];
   nextPlayerId: number;
   pendingLeaves: number[];
-  messages: GameMessage[];
+  /** Game messages waiting for their tick. */
+  messages: Array<GameMessage & { tick: number }>;
   snapshotAccumulator: number;
   /** Ids of the scene's built static bodies still present (sent in welcomes, never in snapshots). */
   sceneStatics: number[];

@@ -305,10 +305,15 @@ export class Room implements HostedRoom {
     return result;
   }
 
-  /** Queues a player's game message for the next tick; returns why it was refused, or null. */
-  offerMessage(playerId: number, name: string, payload: readonly number[]): string | null {
+  /**
+   * Queues a player's game message for `tick` (a predicting client's own tick for it), or the next tick when that has
+   * passed or none is given; no later than the input lead limit. Returns why it was refused, or null.
+   */
+  offerMessage(playerId: number, name: string, payload: readonly number[], tick?: number): string | null {
     if (!this.players.has(playerId)) return 'not in the room';
-    return this.gameMessages.offer(playerId, name, payload, this.sim.gameMessageKinds ?? []);
+    const next = this.sim.tick;
+    const at = tick === undefined || tick < next ? next : Math.min(tick, next + (this.opts.maxInputLeadTicks ?? 120));
+    return this.gameMessages.offer(playerId, name, payload, this.sim.gameMessageKinds ?? [], at);
   }
 
   /** Whether a body is part of the scene's built static geometry (sent in the welcome, not in snapshots). */
@@ -347,7 +352,7 @@ export class Room implements HostedRoom {
     const tick = this.sim.tick;
     const m = this.opts.metrics;
     const { leaves, joins, commands } = this.players.takeRecord(tick, () => m.inputsRepeated.inc());
-    const messages = this.gameMessages.take((id) => this.players.has(id));
+    const messages = this.gameMessages.take(tick, (id) => this.players.has(id));
     const record: TickInputRecord = messages.length > 0 ? { tick, leaves, joins, commands, messages } : { tick, leaves, joins, commands };
     this.opts.recorder?.append(record);
     const stepStarted = performance.now();

@@ -1,7 +1,7 @@
-// The predicting client's own game messages until the server confirms them: each is applied on a predicted tick at
-// once (the server stamps it with the tick it arrives for, which the client cannot know), and taken out when a
-// confirmed record carries it. One the server has not applied by its predicted tick moves to a later one; one never
-// confirmed (the server refused it) is dropped after a while. No timers, no sockets.
+// The predicting client's own game messages until the server confirms them: each is applied on the next predicted tick
+// at once (the message asks the server for that tick; one arriving after the server ran it gets a later tick), and
+// taken out when a confirmed record carries it. One the server has not applied by its predicted tick moves to a later
+// one; one never confirmed (the server refused it) is dropped after a while. No timers, no sockets.
 import { MAX_GAME_MESSAGES_PER_PLAYER_TICK, type GameMessage } from '../../shared/sim/game-messages.ts';
 
 interface Pending {

@@ -197,11 +197,13 @@ export class PredictSession {
   }
 
   /**
-   * An own game message was just sent: the local simulation applies it on its next predicted tick. Sent while no
-   * predictor runs (starting, resyncing), it is only the server's: it shows in the next checkpoint's state.
+   * An own game message is being sent: the local simulation applies it on its next predicted tick, which is returned
+   * (the tick to ask the server for). Sent while no predictor runs (starting, resyncing), it is only the server's:
+   * null, and it shows in the next checkpoint's state.
    */
-  onOwnMessage(name: string, payload: readonly number[]): void {
-    if (this.active) this.predictor?.sendMessage(name, payload);
+  onOwnMessage(name: string, payload: readonly number[]): number | null {
+    if (!this.active || !this.predictor) return null;
+    return this.predictor.sendMessage(name, payload);
   }
 
   /** One frame: apply confirmed records, predict to `targetTick` (exclusive), measure. */

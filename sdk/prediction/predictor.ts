@@ -148,9 +148,13 @@ export class Predictor {
     return this.lastState;
   }
 
-  /** An own game message just sent: applied on the next predicted tick, until the server's record says otherwise. */
-  sendMessage(name: string, payload: readonly number[]): void {
+  /**
+   * An own game message being sent: applied on the next predicted tick (returned: the tick to ask the server for),
+   * until the server's record says otherwise.
+   */
+  sendMessage(name: string, payload: readonly number[]): number {
     this.ownMessages.add(name, payload, this.sim.tick);
+    return this.sim.tick;
   }
 
   /** Own game messages sent and not yet seen in a confirmed record. */

@@ -19,7 +19,7 @@ export interface RoomThreadLink {
   detach(room: string, playerId: number): void;
   close(room: string, reason: string): Promise<void>;
   queueInput(member: number, tick: number, command: InputCommand): void;
-  queueMessage(member: number, name: string, payload: readonly number[]): void;
+  queueMessage(member: number, name: string, payload: readonly number[], tick?: number): void;
   queueAck(member: number, tick: number): void;
   /** Serve the member in predict mode (again: a resync) or on snapshots. */
   queueNetMode(member: number, mode: NetMode): void;
@@ -176,8 +176,8 @@ export class RemoteRoom implements HostedRoom {
         this.via((t) => t.queueInput(member, tick, command));
         return null;
       },
-      offerMessage: (name, payload) => {
-        this.via((t) => t.queueMessage(member, name, payload));
+      offerMessage: (name, payload, tick) => {
+        this.via((t) => t.queueMessage(member, name, payload, tick));
         return null;
       },
       acknowledge: (tick) => this.via((t) => t.queueAck(member, tick)),

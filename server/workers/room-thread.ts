@@ -179,8 +179,8 @@ export class RoomThread implements RoomThreadLink {
     this.scheduleFlush();
   }
 
-  queueMessage(member: number, name: string, payload: readonly number[]): void {
-    this.traffic.messages.push({ member, name, payload: [...payload] });
+  queueMessage(member: number, name: string, payload: readonly number[], tick?: number): void {
+    this.traffic.messages.push(tick === undefined ? { member, name, payload: [...payload] } : { member, name, payload: [...payload], tick });
     this.scheduleFlush();
   }
 

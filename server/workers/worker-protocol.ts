@@ -104,7 +104,7 @@ export interface MemberTraffic {
   /** Each input message of a member: the first tick it stamps and its commands. */
   inputs: Array<{ member: number; firstTick: number; commands: InputCommand[] }>;
   /** Each game message of a member, in arrival order. */
-  messages: Array<{ member: number; name: string; payload: number[] }>;
+  messages: Array<{ member: number; name: string; payload: number[]; tick?: number }>;
   /** [member, tick] pairs, flat. */
   acks: number[];
   /** [member, 1 | 0] pairs, flat: the member's socket is (no longer) backed up. */

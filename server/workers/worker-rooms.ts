@@ -177,7 +177,7 @@ export class WorkerRooms {
           const m = this.members.get(input.member);
           if (m) for (let i = 0; i < input.commands.length; i++) m.seat.offerInput(input.firstTick + i, input.commands[i]);
         }
-        for (const g of messages) this.members.get(g.member)?.seat.offerMessage(g.name, g.payload);
+        for (const g of messages) this.members.get(g.member)?.seat.offerMessage(g.name, g.payload, g.tick);
         for (let i = 0; i < acks.length; i += 2) this.members.get(acks[i])?.seat.acknowledge(acks[i + 1]);
         for (let i = 0; i < pressure.length; i += 2) {
           const m = this.members.get(pressure[i]);

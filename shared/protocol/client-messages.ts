@@ -57,6 +57,11 @@ export interface GameMessageMessage {
   name: string;
   /** At most 8 integers within ±1 000 000. */
   payload: number[];
+  /**
+   * The tick a predicting client's own simulation applies it on: the server applies it then, or on its next tick when
+   * that one has passed (absent: its next tick). Beyond the input lead limit it counts as that limit.
+   */
+  tick?: number;
 }
 
 /** Every client→server message. */

@@ -99,7 +99,7 @@ export function encodeClientMessage(m: ClientMessage): Uint8Array {
     case 'netMode':
       return packr.pack([ClientOpcode.NetMode, m.mode]);
     case 'game':
-      return packr.pack([ClientOpcode.GameMessage, m.name, [...m.payload]]);
+      return packr.pack(m.tick === undefined ? [ClientOpcode.GameMessage, m.name, [...m.payload]] : [ClientOpcode.GameMessage, m.name, [...m.payload], m.tick]);
   }
 }
 

@@ -157,11 +157,13 @@ export function decodeClientMessage(data: unknown, maxBytes: number = MAX_CLIENT
       return { ok: true, message: { type: 'ping', clientTimeMs: t }, clampedCommands: 0 };
     }
     case ClientOpcode.GameMessage: {
-      const wrong = arity(value, 3, 'game');
+      const wrong = value.length === 4 ? null : arity(value, 3, 'game');
       if (wrong) return wrong;
       const shape = checkGameMessageShape(value[1], value[2]);
       if (!shape.ok) return bad(`game.${shape.error}`);
-      return { ok: true, message: { type: 'game', name: shape.name, payload: shape.payload }, clampedCommands: 0 };
+      if (value.length === 3) return { ok: true, message: { type: 'game', name: shape.name, payload: shape.payload }, clampedCommands: 0 };
+      if (!isTick(value[3])) return bad(`game.tick must be an integer tick in [0, ${MAX_TICK}], got ${describeValue(value[3])}`);
+      return { ok: true, message: { type: 'game', name: shape.name, payload: shape.payload, tick: value[3] }, clampedCommands: 0 };
     }
     case ClientOpcode.Bye: {
       const wrong = arity(value, 1, 'bye');

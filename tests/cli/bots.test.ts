@@ -1,7 +1,9 @@
 // Tests for cli/bots.ts: seeded scripted bots join through the client library (MemoryNetwork, manual clock),
-// drive varied commands into the room, stop on time and report their traffic.
+// drive varied commands into the room, stop on time and report their traffic; with a scenario of your own they predict.
 import { afterEach, describe, expect, it } from 'vitest';
 import { startBots } from '../../cli/bots.ts';
+import { nodePredictOptions } from '../../cli/predict-options.ts';
+import { scenario as ballGoals } from '../../examples/ball-goals/game.ts';
 import { MEMORY_URL, startHarness, type Harness } from '../server/harness.ts';
 import { stripScenario } from '../server/test-scenarios.ts';
 
@@ -62,6 +64,20 @@ describe('bots', () => {
     expect([first.connected, first.closedReason]).toEqual([true, 'client-closed']);
     expect([second.connected, second.closedReason]).toEqual([false, 'room-full']);
     expect(second.closedDetail).toMatch(/^room-full: room default is full \(1 clients\)/);
+  });
+
+  it('predicts a room of a scenario of your own (a game-API game) when given its definition, without a desync', async () => {
+    h = await startHarness({ scenarios: [ballGoals], durability: { mode: 'off' } });
+    expect(h.room().netMode).toBe('predict');
+    const net = h.network({ latencyMs: 30 });
+    const run = startBots({ url: MEMORY_URL, count: 2, seconds: 4, clock: h.clock, transport: net.transport, seed: 7, predict: nodePredictOptions({}, [ballGoals]) });
+    let report: Awaited<typeof run.done> | null = null;
+    void run.done.then((r) => (report = r));
+    await h.settle(() => report !== null, 10_000);
+    for (const b of report!.bots) {
+      expect(b.prediction).toMatchObject({ mode: 'predict', desyncs: 0 });
+      expect(b.prediction!.hashesVerified).toBeGreaterThan(3);
+    }
   });
 
   it('rejects a bad bot count', () => {

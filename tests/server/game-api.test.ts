@@ -188,6 +188,25 @@ describe('game messages (server and SDK)', () => {
     expect(t.closed).toBeNull();
   });
 
+  it('applies a message on the tick it names, on the next tick when that one has passed, and no later than the input lead limit', async () => {
+    h = await startHarness({ scenarios: [pickTeamScenario] });
+    const t = await h.join('raw');
+    const next = h.room().sim.tick;
+    t.send({ type: 'game', name: 'pickTeam', payload: [1], tick: next + 20 });
+    t.send({ type: 'game', name: 'ready', payload: [], tick: Math.max(0, next - 5) });
+    t.send({ type: 'game', name: 'ready', payload: [], tick: next + 100_000 });
+    await h.settle(() => h!.history().records.filter((r) => r.messages !== undefined).length >= 3, 5000);
+    const stamped = h.history().records.filter((r) => r.messages !== undefined).map((r) => [r.tick, r.messages!.map((m) => m.name)]);
+    expect(stamped[0]).toEqual([expect.any(Number), ['ready']]);
+    expect(stamped[0][0]).toBeLessThan(next + 20);
+    expect(stamped[1]).toEqual([next + 20, ['pickTeam']]);
+    // The room's default input lead limit is 120 ticks past the tick it arrived before.
+    expect(stamped[2][1]).toEqual(['ready']);
+    expect(stamped[2][0]).toBeLessThanOrEqual(next + 130);
+    expect(stamped[2][0]).toBeGreaterThan(next + 100);
+    expect(t.ofType('error')).toEqual([]);
+  });
+
   it('refuses more than eight messages from one player in one tick', async () => {
     h = await startHarness({ scenarios: [pickTeamScenario] });
     const t = await h.join('raw');

@@ -54,11 +54,11 @@ describe('predicted play of a game-API scenario', () => {
     const sim = room.sim as Simulation;
     const serverState = new Map<number, GameStateValues>();
     const serverEvents: SimEvent[] = [];
-    let serverMessages = 0;
+    const messageTicks: number[] = [];
     room.onTick((record, events) => {
       serverState.set(record.tick, sim.gameState());
       serverEvents.push(...events);
-      serverMessages += record.messages?.length ?? 0;
+      for (const _ of record.messages ?? []) messageTicks.push(record.tick);
     });
     const rng = new Prng(7);
     const net = h.network({ latencyMs: 50, jitterMs: 10, lossRate: 0.02, random: () => rng.next() });
@@ -110,7 +110,8 @@ describe('predicted play of a game-API scenario', () => {
     const reset = ballAt(red, ballId);
     expect(Math.hypot(reset.x - KICK_OFF.x, reset.z - KICK_OFF.z)).toBeLessThan(0.05);
     await play(h, 3_000, wander);
-    expect(serverMessages).toBe(1);
+    // The message asked for the tick red's simulation applied it on, and arrived in time for it.
+    expect(messageTicks).toEqual([before]);
 
     for (const c of [red, blue]) {
       const p = c.stats().prediction!;

@@ -98,6 +98,12 @@ describe('game-schema-codec', () => {
     expect(refuse([ClientOpcode.GameMessage, 'pick', [0.5]])).toBe('bad-message: game.payload[0] must be an integer within ±1000000, got 0.5');
     expect(refuse([ClientOpcode.GameMessage, 'pick', new Array(9).fill(0)])).toBe('bad-message: game.payload must be an array of at most 8 integers');
     expect(refuse([ClientOpcode.GameMessage, 'pick'])).toBe('bad-message: game must have 2 field(s), got 1');
+    // A predicting client names the tick its own simulation applies the message on.
+    expect(decodeClientMessage(encodeClientMessage({ type: 'game', name: 'ready', payload: [], tick: 1234 }))).toEqual({ ok: true, message: { type: 'game', name: 'ready', payload: [], tick: 1234 }, clampedCommands: 0 });
+    expect(refuse([ClientOpcode.GameMessage, 'pick', [], -1])).toBe('bad-message: game.tick must be an integer tick in [0, 4294967295], got -1');
+    expect(refuse([ClientOpcode.GameMessage, 'pick', [], 1.5])).toMatch(/^bad-message: game.tick must be an integer tick/);
+    expect(refuse([ClientOpcode.GameMessage, 'pick', [], 'now'])).toMatch(/^bad-message: game.tick must be an integer tick/);
+    expect(refuse([ClientOpcode.GameMessage, 'pick', [], 1, 2])).toBe('bad-message: game must have 2 field(s), got 4');
   });
 
   it('refuses a welcome whose message rows are malformed', () => {
