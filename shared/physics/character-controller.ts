@@ -6,7 +6,8 @@ import type { Vec3Like } from '../physics-data/vectors.ts';
 import type { BodyHandle } from './body-handle.ts';
 import type { JoltModule } from './jolt-backend.ts';
 import { checkNoCollideGroup } from './body-slots.ts';
-import { assertGroupBits, CollisionLayer, makeBroadPhaseFilter, makeObjectLayerFilter, packObjectLayer } from './layers.ts';
+import { characterParts } from './character-parts.ts';
+import { assertGroupBits, CollisionLayer, packObjectLayer } from './layers.ts';
 import { worldInternals, type PhysicsWorld, type WorldInternals } from './physics-world.ts';
 import { restoreStateBytes, saveStateBytes, type JoltStateRecorder } from './state-recorder.ts';
 
@@ -108,16 +109,9 @@ export class CharacterController {
     world.ensureRoom(16 * 1024, what);
 
     const centreY = this.halfHeight + this.radius;
-    const capsule = new J.CapsuleShapeSettings(this.halfHeight, this.radius); // owned by the decorated settings below
-    const offset = new J.Vec3(0, centreY, 0); // copied, freed below
+    const parts = characterParts(world);
+    const shape = parts.shape(this.halfHeight, this.radius); // shared by the world's characters of this size
     const identity = new J.Quat(0, 0, 0, 1); // copied, freed below
-    const shapeSettings = new J.RotatedTranslatedShapeSettings(offset, identity, capsule); // freed after Create()
-    J.destroy(offset);
-    const result = shapeSettings.Create(); // static temporary: Clear()ed, never destroyed
-    const shape = result.Get();
-    shape.AddRef(); // our bridging reference, released once the character holds its own
-    result.Clear();
-    J.destroy(shapeSettings); // also releases the capsule settings it referenced
 
     const settings = new J.CharacterVirtualSettings(); // freed after the character is built
     settings.mMass = mass;
@@ -140,16 +134,14 @@ export class CharacterController {
     J.destroy(pos);
     J.destroy(identity);
     J.destroy(settings);
-    shape.Release();
 
-    this.update = new J.ExtendedUpdateSettings(); // owned here
-    this.update.mWalkStairsStepUp.Set(0, stepUp, 0);
-    this.update.mStickToFloorStepDown.Set(0, -stick, 0);
-    const objectLayer = packObjectLayer(J, this.layer, this.mask);
-    this.bpFilter = makeBroadPhaseFilter(J, world.filters, objectLayer); // owned here
-    this.objFilter = makeObjectLayerFilter(J, world.filters, objectLayer); // owned here
-    this.bodyFilter = new J.BodyFilter(); // owned here
-    this.shapeFilter = new J.ShapeFilter(); // owned here
+    // Read-only during updates: shared by the world's characters (character-parts.ts), never freed here.
+    this.update = parts.update(stepUp, stick);
+    const filters = parts.filters(packObjectLayer(J, this.layer, this.mask));
+    this.bpFilter = filters.bp;
+    this.objFilter = filters.obj;
+    this.bodyFilter = parts.bodyFilter;
+    this.shapeFilter = parts.shapeFilter;
     this.scratch = new J.Vec3(0, 0, 0); // owned here
 
     if (opts.innerBody !== false) {
@@ -320,7 +312,7 @@ export class CharacterController {
     const J = this.J;
     if (this.body) internals.untrack(this.body);
     this.character.Release(); // our reference; the character (and its inner body) is freed when it reaches zero
-    for (const obj of [this.update, this.bpFilter, this.objFilter, this.bodyFilter, this.shapeFilter, this.scratch]) J.destroy(obj);
+    J.destroy(this.scratch);
   }
 
   /** Whether destroy() has run. */

@@ -25,6 +25,7 @@ export interface ScenarioShot {
 /** Parameters that keep software rendering quick while showing what each scenario is. */
 export const SHOT_PARAMS: Readonly<Record<string, Record<string, number>>> = {
   'shape-rain': { count: 120 },
+  'crowd-arena': { props: 48 },
   'cubes-901': {},
 };
 

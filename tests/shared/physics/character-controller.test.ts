@@ -36,6 +36,31 @@ describe('character-controller', () => {
     w.destroy();
   });
 
+  it('keeps each character\'s own stair height and size while the world\'s characters share Jolt objects', async () => {
+    const w = await makeWorld();
+    addGround(w);
+    w.addBox({ x: 2, y: 0.125, z: 4 }, { x: 4, y: 0.125, z: 0 }, null, { motion: 'static' }); // a 0.25 m step from x = 2
+    const climber = new CharacterController(w, { position: { x: 0, y: 0, z: -2 } });
+    const flat = new CharacterController(w, { position: { x: 0, y: 0, z: 0 }, stepUpHeight: 0 });
+    const small = new CharacterController(w, { position: { x: 0, y: 0, z: 2 }, radius: 0.2, halfHeight: 0.3 });
+    for (let i = 0; i < 120; i++) {
+      w.stepFixed();
+      for (const ch of [climber, flat, small]) {
+        ch.velocity.x = 2;
+        ch.move(DT);
+      }
+    }
+    expect(climber.position.y).toBeCloseTo(0.25, 2);
+    expect(climber.position.x).toBeGreaterThan(3);
+    expect(flat.position.y).toBeLessThan(0.05);
+    expect(flat.position.x).toBeLessThan(2);
+    expect(small.position.y).toBeCloseTo(0.25, 2);
+    const top = w.rayCast({ x: small.position.x, y: 5, z: small.position.z }, { x: 0, y: -10, z: 0 })!;
+    expect(top.bodyId).toBe(small.body!.id);
+    expect(top.point.y).toBeCloseTo(0.25 + 2 * (0.3 + 0.2), 1); // 1.25 m (+ skin), not a default 1.9 m capsule
+    w.destroy();
+  });
+
   it('cannot climb a 1 m wall and stops in front of it', async () => {
     const w = await makeWorld();
     addGround(w);
