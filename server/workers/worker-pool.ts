@@ -120,7 +120,7 @@ export class WorkerPool implements RoomHost {
   }
 
   private init(index: number): WorkerInit {
-    return { index, scenarioModules: this.opts.scenarioModules ?? [], logLevel: this.opts.logLevel, config: this.opts.config };
+    return { index, count: this.opts.count, scenarioModules: this.opts.scenarioModules ?? [], logLevel: this.opts.logLevel, config: this.opts.config };
   }
 
   private async spawn(index: number): Promise<void> {
