@@ -43,6 +43,8 @@ const server = await startServer({
   logger: silentLogger(),
   metrics,
   roomWorkers,
+  // A/B lever for the rooms' GC: BENCH_WORKER_YOUNG_MB sets the room workers' young generation (default V8's).
+  roomWorkerYoungGenerationMb: process.env.BENCH_WORKER_YOUNG_MB ? Number(process.env.BENCH_WORKER_YOUNG_MB) : undefined,
 });
 
 interface TickLog {

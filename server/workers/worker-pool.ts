@@ -22,6 +22,8 @@ export interface WorkerPoolOptions {
   logger: Logger;
   /** CPU ms per tick a worker may fill. Default WORKER_BUDGET_MS_PER_TICK. */
   budgetMsPerTick?: number;
+  /** Each worker's young-generation size in MB (Worker resourceLimits.maxYoungGenerationSizeMb). Default: V8's. */
+  youngGenerationMb?: number;
 }
 
 /** One worker's load for /metrics, the room list and placement. */
@@ -50,6 +52,7 @@ export class WorkerPool implements RoomHost {
   /** Starts `count` workers and waits until every one is ready. */
   static async start(opts: WorkerPoolOptions): Promise<WorkerPool> {
     if (!Number.isInteger(opts.count) || opts.count < 1 || opts.count > 256) throw new Error(`room workers must be a whole number in [1, 256], got ${opts.count}`);
+    if (opts.youngGenerationMb !== undefined && !(opts.youngGenerationMb >= 1 && opts.youngGenerationMb <= 1024)) throw new Error(`a room worker's young generation must be 1–1024 MB, got ${opts.youngGenerationMb}`);
     const pool = new WorkerPool(opts);
     const started = await Promise.allSettled(pool.threads.map((_, i) => pool.spawn(i)));
     const failed = started.find((s) => s.status === 'rejected');
@@ -124,7 +127,7 @@ export class WorkerPool implements RoomHost {
   }
 
   private async spawn(index: number): Promise<void> {
-    const thread = await RoomThread.start(this.init(index), this.opts.logger, (dead, why) => this.replace(dead, why));
+    const thread = await RoomThread.start(this.init(index), this.opts.logger, (dead, why) => this.replace(dead, why), this.opts.youngGenerationMb);
     if (this.stopped) {
       await thread.stop();
       return;
