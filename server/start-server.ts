@@ -102,6 +102,8 @@ export interface StartServerOptions extends AccessOptions {
   roomMoveCheckEveryMs?: number;
   /** Modules exporting ScenarioDefinitions the room workers offer beside the registry (file URLs; tests' own scenes). */
   workerScenarioModules?: readonly string[];
+  /** Each room worker's young-generation size in MB (fewer, longer scavenges when larger). Default: V8's. */
+  roomWorkerYoungGenerationMb?: number;
   /** Join a fleet of servers through a Redis directory (docs/deploy.md). Default: a single process. */
   fleet?: FleetOptions;
   /** Run as an Agones GameServer through the SDK sidecar (docs/deploy.md). Default: not. */
@@ -186,6 +188,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
             checkpointEverySeconds: opts.checkpointEverySeconds,
           },
           scenarioModules: opts.workerScenarioModules,
+          youngGenerationMb: opts.roomWorkerYoungGenerationMb,
           logLevel: logger.level,
           logger,
           moveCheckEveryMs: opts.roomMoveCheckEveryMs,

@@ -1,7 +1,8 @@
 // Where in the tick period each room of one thread ticks: rooms that share an event loop get phases spread over the
 // period (the widest free gap first), so their ticks interleave with each other and with socket work instead of
 // queueing behind one another at the same instant, and a room that slowed down rejoins its own phase, not its
-// neighbours'. Pure bookkeeping: the TickClock turns a phase into due times.
+// neighbours'. Room workers sharing cores start their phases at different offsets (workerPhaseOffsetMs) so their
+// rooms' ticks interleave across threads as well. Pure bookkeeping: the TickClock turns a phase into due times.
 import { TICK_MS } from '../shared/tick-rate.ts';
 
 /** The first time at or after `nowMs` that lies `phaseMs` past a whole multiple of `periodMs` (from the clock's zero). */
@@ -11,14 +12,27 @@ export function nextPhaseTimeMs(nowMs: number, periodMs: number, phaseMs: number
   return cycles * periodMs + phaseMs;
 }
 
+/**
+ * Where room worker `index` of `count` starts its phases: workers a sixteenth of the period apart divided by their
+ * count, so up to 16 rooms per worker interleave with the other workers' instead of ticking at the same instants.
+ */
+export function workerPhaseOffsetMs(index: number, count: number, periodMs = TICK_MS): number {
+  if (!(Number.isInteger(index) && Number.isInteger(count) && index >= 0 && index < count)) throw new Error(`workerPhaseOffsetMs: needs 0 ≤ index < count, got ${index}, ${count}`);
+  return ((index / count) * periodMs) / 16;
+}
+
 /** A thread's tick phases: take() one per room when it opens, release() it when the room closes. */
 export class TickPhases {
   readonly periodMs: number;
+  /** The first room's phase (the rest spread around it). */
+  readonly offsetMs: number;
   private readonly held: number[] = [];
 
-  constructor(periodMs = TICK_MS) {
+  constructor(periodMs = TICK_MS, offsetMs = 0) {
     if (!(periodMs > 0)) throw new Error(`TickPhases: periodMs must be > 0, got ${periodMs}`);
+    if (!(offsetMs >= 0 && offsetMs < periodMs)) throw new Error(`TickPhases: offsetMs must be in [0, periodMs), got ${offsetMs}`);
     this.periodMs = periodMs;
+    this.offsetMs = offsetMs;
   }
 
   /** Phases in use, ascending. */
@@ -26,9 +40,9 @@ export class TickPhases {
     return this.held;
   }
 
-  /** The middle of the widest gap between the phases in use (0 for the first; ties go to the earliest gap). */
+  /** The middle of the widest gap between the phases in use (offsetMs for the first; ties go to the earliest gap). */
   take(): number {
-    let phase = 0;
+    let phase = this.offsetMs;
     if (this.held.length > 0) {
       let widest = -1;
       for (let i = 0; i < this.held.length; i++) {

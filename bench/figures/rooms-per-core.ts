@@ -40,6 +40,8 @@ interface RoomsStep {
   /** The bots' own event-loop delay (ms): when high, the bots (not the server) were late. */
   botLoopDelayP99Ms: number | null;
   botLoopDelayMaxMs: number | null;
+  /** How long the step's settle took (ms): it waits for the rooms to run the settle's worth of ticks. */
+  settledMs: number | null;
   /** GC of the threads the rooms tick on (the main thread, or the room workers merged). */
   gcPerTickP99Ms: number;
   gcMaxMs: number;
@@ -97,6 +99,7 @@ export async function runRoomsLadder(opts: { quick: boolean; log(m: string): voi
       botCpuShare: round(bots.cpuShare, 3),
       botLoopDelayP99Ms: bots.loopDelayMs ? round(bots.loopDelayMs.p99, 2) : null,
       botLoopDelayMaxMs: bots.loopDelayMs ? round(bots.loopDelayMs.max, 2) : null,
+      settledMs: bots.settledMs === undefined ? null : Math.round(bots.settledMs),
       gcPerTickP99Ms: s.roomThreadsGc.perTickP99Ms,
       gcMaxMs: s.roomThreadsGc.maxMs,
       gcTotalMs: s.roomThreadsGc.totalMs,

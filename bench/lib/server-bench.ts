@@ -11,6 +11,9 @@ const SWARMS = {
   real: fileURLToPath(new URL('../procs/bot-swarm.ts', import.meta.url)),
 } as const;
 
+/** Longest the light swarm waits for its rooms to run the settle's ticks (procs/light-swarm.ts). */
+const SWARM_SETTLE_LIMIT_MS = 60_000;
+
 /** Which swarm: the light one (protocol-exact, snapshots not decoded) or client-library players. */
 export type SwarmKind = keyof typeof SWARMS;
 
@@ -77,6 +80,8 @@ export interface SwarmReport {
   closedClients: number;
   protocolErrors: number;
   cpuShare: number;
+  /** How long the light swarm's settle took (ms; longer than asked when the rooms ran below 60 ticks/s). */
+  settledMs?: number;
   /** The light swarm's own event-loop delay in the window (ms); absent for the client-library swarm. */
   loopDelayMs?: { p99: number; max: number };
   /** Each room's snapshots as the light swarm's bots saw them (rooms r1…rN; empty in the default room). */
@@ -115,7 +120,7 @@ export async function measureWindow(server: BenchServer, kind: SwarmKind, client
   const swarm = startNode(SWARMS[kind], args, { cpu: server.pinning?.bots });
   try {
     await nextJson<number>(swarm, 'ready', 60_000 + clients * 200);
-    await nextJson<boolean>(swarm, 'window', settleMs + 30_000);
+    await nextJson<boolean>(swarm, 'window', Math.max(settleMs, SWARM_SETTLE_LIMIT_MS) + 30_000);
     sendLine(server.child, 'mark');
     await nextJson<boolean>(server.child, 'marked', 30_000);
     const bots = await nextJson<SwarmReport>(swarm, 'report', windowMs + 30_000);

@@ -48,6 +48,8 @@ const server = await startServer({
   roomWorkers,
   // Room workers build their scenarios from the registry by name, so only main-thread rooms get the lifted cap.
   ...(roomWorkers === 0 ? { scenarios: scenarioSource(listScenarios().map((def) => (def.name === scenario ? { ...def, players: { ...def.players, maxPlayers: maxClients } } : def))) } : {}),
+  // A/B lever for the rooms' GC: BENCH_WORKER_YOUNG_MB sets the room workers' young generation (default V8's).
+  roomWorkerYoungGenerationMb: process.env.BENCH_WORKER_YOUNG_MB ? Number(process.env.BENCH_WORKER_YOUNG_MB) : undefined,
 });
 
 interface TickLog {

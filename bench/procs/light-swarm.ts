@@ -2,10 +2,11 @@
 // then one a second) feeding the library's ClockSync, input messages from its InputSender (newest command plus 3
 // repeats) aimed by its InputLead on the library's half-tick pump, snapshot acks on them (its AckCarrier) — but only
 // read each snapshot's header instead of decoding it, so one core of bots can load a server core. Prints {"ready"},
-// {"window"} after SETTLE_MS, {"report"} after WINDOW_MS (with each room's snapshot gaps as its bots saw them and the
-// swarm's own event-loop delay, which shows whether the bots themselves were late), and plays on until stopped; SIGTERM
-// closes every socket with a close frame first, so the server lets the players go instead of holding them for a
-// reconnect.
+// {"window"} once SETTLE_MS have passed and every bot has seen its room run SETTLE_MS worth of ticks (a slowed server
+// settles in simulated time too: a new room's rain has landed; at most SETTLE_LIMIT_MS), {"report"} after WINDOW_MS
+// (with each room's snapshot gaps as its bots saw them and the swarm's own event-loop delay, which shows whether the
+// bots themselves were late), and plays on until stopped; SIGTERM closes every socket with a close frame first, so the
+// server lets the players go instead of holding them for a reconnect.
 // Run: node bench/procs/light-swarm.ts WS_URL CLIENTS SETTLE_MS WINDOW_MS [ROOMS]
 // (ROOMS 0: everyone in the default room; R > 0: client i joins room r((i mod R) + 1)).
 import { monitorEventLoopDelay } from 'node:perf_hooks';
@@ -38,6 +39,8 @@ interface LightBot {
   /** performance.now() and tick of its last snapshot in the window (-1: none yet). */
   lastSnapshotMs: number;
   lastSnapshotTick: number;
+  /** The tick of its first snapshot (-1: none yet). */
+  firstSnapshotTick: number;
   sync: ClockSync | null;
   lead: InputLead | null;
   sender: InputSender;
@@ -76,6 +79,7 @@ function sawSnapshot(b: LightBot, tick: number, nowMs: number): void {
   }
   b.lastSnapshotMs = nowMs;
   b.lastSnapshotTick = tick;
+  if (b.firstSnapshotTick < 0) b.firstSnapshotTick = tick;
 }
 
 function send(b: LightBot, m: ClientMessage): void {
@@ -120,7 +124,7 @@ function onMessage(b: LightBot, data: Buffer): void {
 
 function connectBot(i: number): Promise<LightBot> {
   const ws = new WebSocket(url, { perMessageDeflate: false });
-  const bot: LightBot = { ws, room: rooms > 0 ? i % rooms : 0, lastSnapshotMs: -1, lastSnapshotTick: -1, sync: null, lead: null, sender: new InputSender({ redundancy: DEFAULT_INPUT_REDUNDANCY }), acks: new AckCarrier(), missedInputTicks: null, pingsSent: 0, nextPingMs: 0, closed: false };
+  const bot: LightBot = { ws, room: rooms > 0 ? i % rooms : 0, lastSnapshotMs: -1, lastSnapshotTick: -1, firstSnapshotTick: -1, sync: null, lead: null, sender: new InputSender({ redundancy: DEFAULT_INPUT_REDUNDANCY }), acks: new AckCarrier(), missedInputTicks: null, pingsSent: 0, nextPingMs: 0, closed: false };
   return new Promise((resolve, reject) => {
     ws.on('open', () => send(bot, { type: 'hello', version: PROTOCOL_VERSION, name: `light-${i + 1}`, room: rooms > 0 ? `r${(i % rooms) + 1}` : null }));
     ws.on('message', (data: Buffer) => {
@@ -175,7 +179,15 @@ const steer = setInterval(() => {
 }, TICK_MS);
 const pumper = setInterval(() => pump(bots), TICK_MS * PUMP_SPACING_TICKS);
 
+/** Longest the settle waits for the rooms to run their settle ticks. */
+const SETTLE_LIMIT_MS = 60_000;
+const settleTicks = Math.round(settleMs / TICK_MS);
+const settleStartMs = performance.now();
 await new Promise((r) => setTimeout(r, settleMs));
+while (performance.now() - settleStartMs < SETTLE_LIMIT_MS && bots.some((b) => b.firstSnapshotTick < 0 || b.lastSnapshotTick - b.firstSnapshotTick < settleTicks)) {
+  await new Promise((r) => setTimeout(r, 100));
+}
+const settledMs = performance.now() - settleStartMs;
 const loopDelay = monitorEventLoopDelay({ resolution: 5 });
 loopDelay.enable();
 for (const b of bots) b.lastSnapshotMs = -1;
@@ -200,6 +212,8 @@ say({
     kbpsPerClient: (perClientPerSecond(received.bytes - start.received.bytes) * 8) / 1000,
     failedSnapshots: 0,
     closedClients: bots.filter((b) => b.closed).length,
+    /** How long the settle took (more than SETTLE_MS when the rooms ran slower than 60 ticks/s). */
+    settledMs,
     protocolErrors,
     cpuShare: (cpu.user + cpu.system) / 1e6 / seconds,
     /** The swarm's own event-loop delay in the window (ms): large values mean the bots, not the server, were late. */

@@ -56,23 +56,29 @@ export class RoomThread implements RoomThreadLink {
   private deadReason: string | null = null;
   private readyWaiter: (() => void) | null = null;
 
-  private constructor(init: WorkerInit, logger: Logger, onDied: (thread: RoomThread, why: string) => void) {
+  private constructor(init: WorkerInit, logger: Logger, onDied: (thread: RoomThread, why: string) => void, youngGenerationMb?: number) {
     this.index = init.index;
     this.logger = logger;
     this.onDied = onDied;
-    this.worker = new Worker(siblingModuleUrl(import.meta.url, 'room-worker'), { workerData: init, name: `room-worker-${init.index}` });
+    const resourceLimits = youngGenerationMb === undefined ? undefined : { maxYoungGenerationSizeMb: youngGenerationMb };
+    this.worker = new Worker(siblingModuleUrl(import.meta.url, 'room-worker'), { workerData: init, name: `room-worker-${init.index}`, resourceLimits });
     this.worker.on('message', (msg: FromWorker) => this.receive(msg));
     this.worker.on('error', (error) => this.died(`it threw ${error instanceof Error ? error.message : String(error)}`, error));
     this.worker.on('exit', (code) => this.died(`it exited with code ${code}`, null));
   }
 
-  /** Starts a worker and waits until it has loaded Jolt and its scenarios. */
-  static start(init: WorkerInit, logger: Logger, onDied: (thread: RoomThread, why: string) => void): Promise<RoomThread> {
+  /** Starts a worker (with this young-generation size in MB, or V8's) and waits until it has loaded Jolt and its scenarios. */
+  static start(init: WorkerInit, logger: Logger, onDied: (thread: RoomThread, why: string) => void, youngGenerationMb?: number): Promise<RoomThread> {
     return new Promise((resolve, reject) => {
-      const thread = new RoomThread(init, logger, (t, why) => {
-        reject(new Error(`room worker ${init.index} failed to start: ${why}`));
-        onDied(t, why);
-      });
+      const thread = new RoomThread(
+        init,
+        logger,
+        (t, why) => {
+          reject(new Error(`room worker ${init.index} failed to start: ${why}`));
+          onDied(t, why);
+        },
+        youngGenerationMb,
+      );
       thread.readyWaiter = () => resolve(thread);
     });
   }

@@ -23,6 +23,7 @@ const rooms = new WorkerRooms({
   logger,
   config: init.config,
   post: (msg, transfer) => port.postMessage(msg, transfer ?? []),
+  worker: { index: init.index, count: init.count },
 });
 port.on('message', (msg: ToWorker) => rooms.handle(msg));
 port.postMessage({ t: 'ready' });

@@ -25,6 +25,8 @@ export interface WorkerPoolOptions {
   budgetMsPerTick?: number;
   /** How often the move policy (move-policy.ts) looks at the workers' loads; 0: never (moves only on request). Default 1000. */
   moveCheckEveryMs?: number;
+  /** Each worker's young-generation size in MB (Worker resourceLimits.maxYoungGenerationSizeMb). Default: V8's. */
+  youngGenerationMb?: number;
 }
 
 /** A room that moved stays where it is for this long before the policy may move it again. */
@@ -69,6 +71,7 @@ export class WorkerPool implements RoomHost {
   /** Starts `count` workers and waits until every one is ready. */
   static async start(opts: WorkerPoolOptions): Promise<WorkerPool> {
     if (!Number.isInteger(opts.count) || opts.count < 1 || opts.count > 256) throw new Error(`room workers must be a whole number in [1, 256], got ${opts.count}`);
+    if (opts.youngGenerationMb !== undefined && !(opts.youngGenerationMb >= 1 && opts.youngGenerationMb <= 1024)) throw new Error(`a room worker's young generation must be 1–1024 MB, got ${opts.youngGenerationMb}`);
     const pool = new WorkerPool(opts);
     const started = await Promise.allSettled(pool.threads.map((_, i) => pool.spawn(i)));
     const failed = started.find((s) => s.status === 'rejected');
@@ -248,11 +251,11 @@ export class WorkerPool implements RoomHost {
   }
 
   private init(index: number): WorkerInit {
-    return { index, scenarioModules: this.opts.scenarioModules ?? [], logLevel: this.opts.logLevel, config: this.opts.config };
+    return { index, count: this.opts.count, scenarioModules: this.opts.scenarioModules ?? [], logLevel: this.opts.logLevel, config: this.opts.config };
   }
 
   private async spawn(index: number): Promise<void> {
-    const thread = await RoomThread.start(this.init(index), this.opts.logger, (dead, why) => this.replace(dead, why));
+    const thread = await RoomThread.start(this.init(index), this.opts.logger, (dead, why) => this.replace(dead, why), this.opts.youngGenerationMb);
     if (this.stopped) {
       await thread.stop();
       return;

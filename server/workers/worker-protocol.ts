@@ -29,8 +29,10 @@ export interface WorkerRoomConfig {
 
 /** What a worker starts with (workerData). */
 export interface WorkerInit {
-  /** Which worker of the pool this is (logs). */
+  /** Which worker of the pool this is (logs, tick phase offset). */
   index: number;
+  /** How many workers the pool has. */
+  count: number;
   /** Modules whose exported ScenarioDefinitions the worker offers besides the built-in registry (file URLs). */
   scenarioModules: readonly string[];
   logLevel: string;

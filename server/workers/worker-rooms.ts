@@ -8,7 +8,7 @@ import type { NetModeRequest } from '../net-mode-policy.ts';
 import type { Clock } from '../../shared/clock.ts';
 import { ErrorCode } from '../../shared/protocol/opcodes.ts';
 import { CatchUpBudget } from '../catch-up-budget.ts';
-import { TickPhases } from '../tick-phases.ts';
+import { TickPhases, workerPhaseOffsetMs } from '../tick-phases.ts';
 import { DeliveryKind, type MemberSink, type Seat } from '../hosted-room.ts';
 import { enterRoom, seatOf } from '../local-seat.ts';
 import { DeliveringMember } from '../member-delivery.ts';
@@ -37,6 +37,8 @@ export interface WorkerRoomsOptions {
   logger: Logger;
   config: WorkerRoomConfig;
   post: PostToMain;
+  /** This worker's place in the pool (its rooms' tick phases start at an offset from the other workers'). */
+  worker?: { index: number; count: number };
 }
 
 /** A member seen from the worker: its bytes are batched for the main thread, which owns its socket. */
@@ -98,7 +100,7 @@ export class WorkerRooms {
   private flushPending = false;
   private readonly statusTimer: ReturnType<typeof setInterval>;
   private readonly catchUp = new CatchUpBudget();
-  private readonly phases = new TickPhases();
+  private readonly phases: TickPhases;
   private overloaded = false;
   /** GC pauses since the last status (GC_PAUSE_FIELDS numbers each); a worker's pauses stall only its own rooms. */
   private gcPauses: number[] = [];
@@ -110,6 +112,7 @@ export class WorkerRooms {
 
   constructor(opts: WorkerRoomsOptions) {
     this.opts = opts;
+    this.phases = new TickPhases(undefined, opts.worker ? workerPhaseOffsetMs(opts.worker.index, opts.worker.count) : 0);
     this.gcObserver.observe({ entryTypes: ['gc'] });
     this.statusTimer = setInterval(() => this.pushStatus(), STATUS_INTERVAL_MS);
     this.statusTimer.unref();

@@ -1,7 +1,7 @@
 // Tests for server/tick-phases.ts: rooms of one thread get tick phases spread over the period, and phase times.
 import { describe, expect, it } from 'vitest';
 import { TickClock } from '../../server/tick-clock.ts';
-import { nextPhaseTimeMs, TickPhases } from '../../server/tick-phases.ts';
+import { nextPhaseTimeMs, TickPhases, workerPhaseOffsetMs } from '../../server/tick-phases.ts';
 import { ManualClock } from '../../shared/clock.ts';
 
 describe('TickPhases', () => {
@@ -27,6 +27,20 @@ describe('TickPhases', () => {
     expect(phases.take()).toBe(8);
     phases.release(99); // unknown: ignored
     expect(phases.phases).toEqual([0, 4, 8, 12]);
+  });
+});
+
+describe('workerPhaseOffsetMs', () => {
+  it("interleaves two workers' rooms on one core: up to 16 rooms each, never two at the same instant", () => {
+    const a = new TickPhases(16, workerPhaseOffsetMs(0, 2, 16));
+    const b = new TickPhases(16, workerPhaseOffsetMs(1, 2, 16));
+    expect([b.take(), b.take(), b.take()]).toEqual([0.5, 8.5, 4.5]);
+    for (let i = 0; i < 16; i++) a.take();
+    for (let i = 0; i < 13; i++) b.take();
+    const all = [...a.phases, ...b.phases].sort((x, y) => x - y);
+    expect(new Set(all).size).toBe(32);
+    for (let i = 1; i < all.length; i++) expect(all[i] - all[i - 1]).toBeCloseTo(0.5, 9);
+    expect(() => workerPhaseOffsetMs(2, 2)).toThrow(/index/);
   });
 });
 
