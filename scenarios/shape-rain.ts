@@ -51,10 +51,15 @@ export const scenario: ScenarioDefinition = {
         return { x: -half + 0.5 + (slot % 8) * ((2 * half - 1) / 7), y: 0.05, z: half + WALKWAY_METRES / 2 + (slot >= 8 ? -1 : 0) };
       },
       onTick(c: ScenarioContext) {
-        // Forget bodies the simulation removed (left the bounds); keep the drop order of the rest.
-        const kept: number[] = [];
-        for (let i = 0; i < live.length; i += 2) if (c.world.getBody(live[i])) kept.push(live[i], live[i + 1]);
-        live = kept;
+        // Forget bodies the simulation removed (left the bounds); keep the drop order of the rest. Most ticks remove
+        // none: the list is copied only from the first one gone.
+        let gone = 0;
+        while (gone < live.length && c.world.getBody(live[gone])) gone += 2;
+        if (gone < live.length) {
+          const kept = live.slice(0, gone);
+          for (let i = gone + 2; i < live.length; i += 2) if (c.world.getBody(live[i])) kept.push(live[i], live[i + 1]);
+          live = kept;
+        }
         let budget = p.spawnPerTick;
         if (p.recycleAfterTicks > 0) {
           while (budget > 0 && live.length > 0 && c.tick - live[1] >= p.recycleAfterTicks) {

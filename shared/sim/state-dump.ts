@@ -136,12 +136,15 @@ export function hashDump(d: StateDump): string {
   return h.hex();
 }
 
+/** hashState's hasher, reused: the hash runs to completion before anything else can use it. */
+const streamHasher = new Hasher64();
+
 /**
  * The state hash of a simulation core straight from its state: the very words hashDump(dumpState(core)) hashes, in
  * the same order, without building the dump (no copies; `bodies` is this tick's bulk read).
  */
 export function hashState(core: SimCore, bodies: BodyStates): string {
-  const h = new Hasher64();
+  const h = streamHasher.reset();
   h.word(core.tick);
   const [s0, s1, s2, s3] = core.rng.getState();
   h.word(s0).word(s1).word(s2).word(s3);

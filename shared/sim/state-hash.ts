@@ -26,8 +26,17 @@ export class Hasher64 {
   private readonly f32Word = new Uint32Array(this.f32.buffer);
 
   constructor(seed = 0) {
+    this.a = 0;
+    this.b = 0;
+    this.reset(seed);
+  }
+
+  /** Starts over, as a new Hasher64(seed) would (reuse one hasher on hot paths: no allocation). */
+  reset(seed = 0): this {
     this.a = (0x9e3779b9 ^ seed) >>> 0;
     this.b = (0x7f4a7c15 + seed) >>> 0;
+    this.count = 0;
+    return this;
   }
 
   /** Adds one 32-bit word (an integer; only its low 32 bits count). */

@@ -81,6 +81,24 @@ describe('shape-rain', () => {
     }
   });
 
+  it('forgets shapes that left the bounds, keeping the drop order of the rest, and drops new ones in their place', async () => {
+    const h = await ScenarioHarness.create(scenario, { params: { ...SMALL, count: 12 } });
+    try {
+      h.run(2);
+      const listed = (): number[] => h.instance.saveState!().slice(1).filter((_, i) => i % 2 === 0);
+      const before = listed();
+      expect(before).toHaveLength(12);
+      const [first, , third] = before;
+      for (const id of [third, first]) h.world.setPosition(id, { x: 0, y: -1000, z: 0 });
+      h.run(2); // removed at the end of the first tick, forgotten and replaced by the scenario in the second
+      expect(listed().slice(0, 10)).toEqual(before.filter((id) => id !== first && id !== third));
+      expect(listed()).toHaveLength(12);
+      expect(h.events.filter((e) => e.type === 'bodyRemoved').map((e) => (e as { bodyId: number }).bodyId).sort()).toEqual([first, third].sort());
+    } finally {
+      h.destroy();
+    }
+  });
+
   it('round-trips its scenario state', async () => {
     const h = await ScenarioHarness.create(scenario, { params: SMALL });
     try {

@@ -76,6 +76,12 @@ describe('state-hash', () => {
     expect(h.hex()).toBe(hashWords(words));
   });
 
+  it('starts over on reset exactly as a new hasher with that seed', () => {
+    const h = new Hasher64(5).word(9).string('used');
+    expect(h.reset().word(1).f64Bits(0.5).string('taos').hex()).toBe('6f4c87e66b05c1ec');
+    expect(h.reset(3).word(7).hex()).toBe(new Hasher64(3).word(7).hex());
+  });
+
   it('matches the test vector published in docs/simulation.md (a changed function would void every golden)', () => {
     expect(new Hasher64().word(1).f64Bits(0.5).string('taos').hex()).toBe('6f4c87e66b05c1ec');
   });
