@@ -92,6 +92,8 @@ interface RigClient {
   inbound: Map<number, Uint8Array[]>;
   bytesDown: number;
   snapshots: number;
+  /** The newest snapshot tick received (completes the next delta snapshot's tick). */
+  snapshotTick: number | null;
   /** Size on the wire of the welcome the server sent (WebSocket framing included). */
   welcomeBytes: number;
 }
@@ -281,6 +283,7 @@ export async function startServerRig(opts: ServerRigOptions): Promise<ServerRig>
       inbound: new Map(),
       bytesDown: 0,
       snapshots: 0,
+      snapshotTick: null,
       welcomeBytes: wsFrameBytes(link.outbox[0].length),
     });
   }
@@ -323,7 +326,8 @@ export async function startServerRig(opts: ServerRigOptions): Promise<ServerRig>
           if (m.message.type === 'snapshot') {
             c.snapshots++;
             // The snapshot reaches the client after one way; its ack is back after the other.
-            const tick = readSnapshotHeader(m.message.bytes).tick;
+            const tick = readSnapshotHeader(m.message.bytes, c.snapshotTick).tick;
+            c.snapshotTick = tick;
             queue(c, now - 1 + 2 * opts.oneWayTicks, encodeClientMessage({ type: 'ack', tick }));
           } else if (m.message.type === 'bye') throw new Error(`server rig: client ${c.playerId} was sent away: ${m.message.message}`);
         }

@@ -9,8 +9,10 @@
  *    messages (docs/protocol.md, docs/game-api.md).
  * 5: the pong's room pace (roomTicksPerSecond, roomSlow).
  * 6: the bye reason `room-moved` (and error code) with the hosting server's URL as the bye's fourth element.
+ * 7: range-coded snapshots (16-bit delta ticks, "nothing changed" snapshots of a few bytes); a snapshot without
+ *    descriptors or game state is framed as its opcode byte followed by the snapshot bytes, not as msgpack.
  */
-export const PROTOCOL_VERSION = 6;
+export const PROTOCOL_VERSION = 7;
 
 /** Opcodes of messages a client sends to the server (1–15). */
 export const ClientOpcode = {

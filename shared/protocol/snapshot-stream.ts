@@ -4,7 +4,7 @@
 import type { BodyDescriptor } from '../sim/types.ts';
 import { SNAPSHOT_HISTORY_SIZE } from './limits.ts';
 import type { SnapshotFormat } from './quantization.ts';
-import { decodeSnapshot, encodeSnapshot, readSnapshotHeader } from './snapshot-codec.ts';
+import { decodeSnapshot, encodeSnapshot, MAX_BASELINE_AGE, readSnapshotHeader } from './snapshot-codec.ts';
 import type { QuantizedFrame } from './snapshot-frame.ts';
 
 /** A bounded map tick → entry that forgets the oldest tick first (so a late, stale entry never pushes out newer ones). */
@@ -178,7 +178,8 @@ export class SnapshotEncoder {
    */
   encode(frame: QuantizedFrame, describe: (bodyId: number) => BodyDescriptor | undefined, shared?: SharedFrameWork): EncodedSnapshot {
     const baseEntry = this.ackedTick >= 0 ? this.sent.get(this.ackedTick) : undefined;
-    const baseline = baseEntry !== undefined && baseEntry.frame.tick < frame.tick ? baseEntry.frame : null;
+    const usable = baseEntry !== undefined && baseEntry.frame.tick < frame.tick && frame.tick - baseEntry.frame.tick <= MAX_BASELINE_AGE;
+    const baseline = usable ? baseEntry.frame : null;
     // The bytes depend only on (format, frame, baseline): clients of one room that acked the same tick share them.
     const key = baseline === null ? -1 : baseline.tick;
     let bytes = shared?.bytes.get(key);
@@ -253,10 +254,11 @@ export class SnapshotDecoder {
 
   /** Decodes bytes into the server's exact frame; throws a clear Error on a missing baseline or corrupt bytes. */
   decode(bytes: Uint8Array): DecodedSnapshot {
-    const frame = decodeSnapshot(this.format, bytes, (tick) => this.frames.get(tick));
+    const reference = this.newest?.tick ?? null;
+    const frame = decodeSnapshot(this.format, bytes, (tick) => this.frames.get(tick), reference);
     this.frames.set(frame.tick, frame);
     if (this.newest === null || frame.tick > this.newest.tick) this.newest = frame;
-    const header = readSnapshotHeader(bytes);
+    const header = readSnapshotHeader(bytes, reference);
     return { frame, baselineTick: header.baselineTick, sizeBytes: bytes.length };
   }
 
