@@ -73,7 +73,7 @@ export class SharedFrameWork {
 /** One encoded snapshot for one client. */
 export interface EncodedSnapshot {
   tick: number;
-  /** The bit-packed frame (docs/protocol.md, "Snapshot bit layout"). */
+  /** The encoded frame (docs/protocol.md, "Snapshots", "Layout"). */
   bytes: Uint8Array;
   /** The acked frame this is a delta against; null for a full snapshot. */
   baselineTick: number | null;
@@ -173,7 +173,7 @@ export class SnapshotEncoder {
   /**
    * Encodes a frame for this client and remembers it as a possible baseline. `describe(id)` returns a body's
    * descriptor; a spawned body without one throws (a server bug, not a client's doing). `shared` (optional) is the
-   * work cache of THIS frame object and the same format, used by every client of a room in one tick: the bit-packed
+   * work cache of THIS frame object and the same format, used by every client of a room in one tick: the encoded
    * bytes and the scan for bodies new since a baseline then cost once per distinct baseline instead of once per client.
    */
   encode(frame: QuantizedFrame, describe: (bodyId: number) => BodyDescriptor | undefined, shared?: SharedFrameWork): EncodedSnapshot {
