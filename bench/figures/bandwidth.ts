@@ -53,7 +53,7 @@ function movingBodies(sim: Simulation): { moving: number; awake: number } {
 }
 
 /** Player 1 driving the big cube towards the waypoints in turn (sprinting forward, yaw at the next waypoint). */
-function cubeDriver(sim: Simulation): (tick: number) => TickInputRecord {
+export function cubeDriver(sim: Simulation): (tick: number) => TickInputRecord {
   let next = 0;
   const bigId = (): number | undefined => sim.descriptors().find((d) => d.motion === 'dynamic' && d.shape.kind === 'box' && d.shape.halfExtents.x >= 1)?.id;
   return (tick) => {

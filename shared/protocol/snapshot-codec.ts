@@ -112,16 +112,17 @@ function encodeBodies(format: SnapshotFormat, enc: RangeEncoder, frame: Quantize
   m.lists.encode(enc, spawnedIds, 1);
   // Which kept bodies changed: a modelled bit for each body awake in the baseline (most of them move), and the
   // ranks among the sleeping ones (few of them wake) as a list.
-  const isChanged = new Uint8Array(frame.bodyIds.length);
-  for (const i of changed) isChanged[i] = 1;
   const wokenRanks: number[] = [];
   let rank = 0;
+  let next = 0;
   for (let i = 0; i < fromBase.length; i++) {
     const j = fromBase[i];
     if (j < 0) continue;
-    if (old[j * BODY_Q_STRIDE + 7] === 0) enc.encodeBit(m.flags, AWAKE_CHANGED, isChanged[i]);
+    while (next < changed.length && changed[next] < i) next++;
+    const isChanged = next < changed.length && changed[next] === i ? 1 : 0;
+    if (old[j * BODY_Q_STRIDE + 7] === 0) enc.encodeBit(m.flags, AWAKE_CHANGED, isChanged);
     else {
-      if (isChanged[i] === 1) wokenRanks.push(rank);
+      if (isChanged === 1) wokenRanks.push(rank);
       rank++;
     }
   }
@@ -229,6 +230,16 @@ export function decodeSnapshot(format: SnapshotFormat, bytes: Uint8Array, baseli
   return { tick: h.tick, bodyIds: b.bodyIds, bodies: b.bodies, playerIds: c.playerIds, characters: c.characters };
 }
 
+/** The union of two ascending lists without common values, ascending. */
+function mergeAscending(a: number[], b: number[]): number[] {
+  if (b.length === 0) return a;
+  const out: number[] = [];
+  let i = 0;
+  let j = 0;
+  while (i < a.length || j < b.length) out.push(j >= b.length || (i < a.length && a[i] < b[j]) ? a[i++] : b[j++]);
+  return out;
+}
+
 function decodeBodies(format: SnapshotFormat, dec: RangeDecoder, tick: number, base: QuantizedFrame, maxSpawns: number): { bodyIds: Uint32Array; bodies: Int32Array } {
   const m = decoderModels.fresh();
   const removed = m.lists.decode(dec, 0, base.bodyIds.length, base.bodyIds.length - 1, 'removed bodies', tick);
@@ -236,32 +247,28 @@ function decodeBodies(format: SnapshotFormat, dec: RangeDecoder, tick: number, b
   const count = base.bodyIds.length - removed.length + spawned.length;
   const { ids, fromBase } = mergeIds(base.bodyIds, removed, spawned, 'body', tick);
   const out = keptRows(fromBase, base.bodies, BODY_Q_STRIDE, removed.length === 0 && spawned.length === 0);
-  const isChanged = new Uint8Array(count);
+  // Kept bodies awake in the baseline carry a changed bit; the woken ones are ranks among those at rest.
+  const awakeChanged: number[] = [];
   let sleeping = 0;
   for (let i = 0; i < count; i++) {
-    const j = fromBase[i];
-    if (j < 0) continue;
-    if (base.bodies[j * BODY_Q_STRIDE + 7] === 0) isChanged[i] = dec.decodeBit(m.flags, AWAKE_CHANGED);
-    else sleeping++;
+    if (fromBase[i] < 0) continue;
+    if (out[i * BODY_Q_STRIDE + 7] === 0) {
+      if (dec.decodeBit(m.flags, AWAKE_CHANGED) === 1) awakeChanged.push(i);
+    } else sleeping++;
   }
   const wokenRanks = m.lists.decode(dec, 2, sleeping, sleeping - 1, 'woken bodies', tick);
+  const woken: number[] = [];
   let rank = 0;
-  let next = 0;
-  for (let i = 0; i < count && next < wokenRanks.length; i++) {
-    const j = fromBase[i];
-    if (j < 0 || base.bodies[j * BODY_Q_STRIDE + 7] === 0) continue;
-    if (rank++ === wokenRanks[next]) {
-      isChanged[i] = 1;
-      next++;
-    }
+  for (let i = 0; i < count && woken.length < wokenRanks.length; i++) {
+    if (fromBase[i] < 0 || out[i * BODY_Q_STRIDE + 7] === 0) continue;
+    if (rank++ === wokenRanks[woken.length]) woken.push(i);
   }
-  const changed: number[] = [];
-  for (let i = 0; i < count; i++) if (isChanged[i] === 1) changed.push(i);
+  const changed = mergeAscending(awakeChanged, woken);
   const pb = format.positionBits;
   const steps = format.positionSteps;
   const rb = format.rotationBits;
   const rmax = format.rotationMax;
-  for (let i = 0; i < count; i++) {
+  for (let i = 0; i < count && spawned.length > 0; i++) {
     if (fromBase[i] >= 0) continue;
     const a = i * BODY_Q_STRIDE;
     for (let f = 0; f < 3; f++) out[a + f] = checkRange(dec.decodeDirect(pb[f]), 0, steps[f], 'position', tick);
