@@ -5,6 +5,27 @@ import type { Transport, TransportFactory, TransportHandlers } from './transport
 /** Close code for a link that failed abnormally (no close frame), as browsers report it. */
 export const ABNORMAL_CLOSE = 1006;
 
+/** Longest close reason a WebSocket accepts (bytes of UTF-8). */
+const MAX_CLOSE_REASON_BYTES = 123;
+
+/**
+ * A close code the platform WebSocket lets a client send: browsers and Node's global WebSocket throw on anything but
+ * 1000 and 3000–4999, so protocol-level codes (1001–1999) travel as 4000 + (code − 1000), e.g. 1002 as 4002.
+ */
+export function sendableCloseCode(code: number): number {
+  if (code === 1000 || (code >= 3000 && code <= 4999)) return code;
+  if (code > 1000 && code < 2000) return 4000 + (code - 1000);
+  return 1000;
+}
+
+// A close reason cut to what the WebSocket accepts, on a character boundary.
+function sendableReason(reason: string): string {
+  const encoder = new TextEncoder();
+  let out = reason;
+  while (encoder.encode(out).length > MAX_CLOSE_REASON_BYTES) out = out.slice(0, -1);
+  return out;
+}
+
 /** Opens a WebSocket transport; throws only when this runtime has no global WebSocket. */
 export const webSocketTransport: TransportFactory = (url: string, handlers: TransportHandlers): Transport => {
   const WS = (globalThis as { WebSocket?: typeof WebSocket }).WebSocket;
@@ -30,7 +51,7 @@ export const webSocketTransport: TransportFactory = (url: string, handlers: Tran
     if (closed) return;
     if (ev.data instanceof ArrayBuffer) handlers.message(new Uint8Array(ev.data));
     else {
-      socket.close(1003, 'text frames are not part of the protocol');
+      socket.close(sendableCloseCode(1003), 'text frames are not part of the protocol');
       finish(1003, 'server sent a text frame');
     }
   };
@@ -44,7 +65,7 @@ export const webSocketTransport: TransportFactory = (url: string, handlers: Tran
       socket.send(data);
     },
     close(code = 1000, reason = '') {
-      if (socket.readyState === 0 || socket.readyState === 1) socket.close(code, reason);
+      if (socket.readyState === 0 || socket.readyState === 1) socket.close(sendableCloseCode(code), sendableReason(reason));
     },
     bufferedAmount: () => socket.bufferedAmount,
   };

@@ -2,11 +2,12 @@
 // showing where it faces, a blob shadow under each moving body (on the static boxes below it) so height reads, and
 // impact feedback for bullets (a spark where one bounces or trips a sensor, and a flash on the body it hit). Extra
 // renderer bodies under ids no server body uses; presentation only (nothing here feeds back into the game). Shadows
-// fall on static boxes and height fields (not on triangle meshes).
+// fall on static boxes, height fields and triangle meshes.
 import type { SnapshotView } from '../../shared/protocol/snapshot-frame.ts';
 import type { ShapeSpec } from '../../shared/physics-data/shape-spec.ts';
 import { forwardFromYaw } from '../../shared/sim/controls.ts';
 import type { BodyDescriptor, SimEvent } from '../../shared/sim/types.ts';
+import { MeshGround, type GroundMesh } from '../render/mesh-ground.ts';
 import type { RemovedBody, RenderTarget, WorldView } from './world-view.ts';
 
 /** Decoration ids start here (server body ids are far smaller); each kind has its own block. */
@@ -85,6 +86,16 @@ export function heightFieldSurfaceY(d: BodyDescriptor, x: number, z: number): nu
   return d.position.y + top * (1 - tz) + bottom * tz;
 }
 
+// The visible static triangle meshes, in the form MeshGround takes.
+function meshesOf(descriptors: readonly BodyDescriptor[]): GroundMesh[] {
+  const out: GroundMesh[] = [];
+  for (const d of descriptors) {
+    if (d.hidden || d.shape.kind !== 'mesh') continue;
+    out.push({ positions: d.shape.positions, indices: d.shape.indices, position: d.position, rotation: d.rotation });
+  }
+  return out;
+}
+
 interface Tracked {
   x: number;
   y: number;
@@ -109,6 +120,8 @@ export class Decorations {
   private readonly radii = new Map<number, { descriptor: BodyDescriptor; radius: number }>();
   /** The scene's static height fields (read once per welcome, on the first frame). */
   private heightFields: BodyDescriptor[] | null = null;
+  /** The scene's static triangle meshes, gridded for height queries (built once per welcome, on the first frame). */
+  private meshGround: MeshGround | null = null;
 
   constructor(renderer: RenderTarget, world: WorldView) {
     this.renderer = renderer;
@@ -161,6 +174,7 @@ export class Decorations {
     this.bullets.clear();
     this.radii.clear();
     this.heightFields = null;
+    this.meshGround = null;
   }
 
   // The highest static surface under (x, y, z) that shadows fall on: a box's top (ray cast) or a height field.
@@ -175,6 +189,8 @@ export class Decorations {
       const g = heightFieldSurfaceY(d, x, z);
       if (g !== null && g <= y && (best === null || g > best)) best = g;
     }
+    const m = this.meshGround?.surfaceBelow(x, y, z) ?? null;
+    if (m !== null && (best === null || m > best)) best = m;
     return best;
   }
 
@@ -201,7 +217,8 @@ export class Decorations {
   private placeShadowsAndTrackBullets(view: SnapshotView): void {
     const store = this.renderer.store;
     this.heightFields ??= this.world.staticDescriptors().filter((d) => d.shape.kind === 'heightField' && !d.hidden);
-    const canShadow = this.world.occluders.size > 0 || this.heightFields.length > 0;
+    this.meshGround ??= new MeshGround(meshesOf(this.world.staticDescriptors()));
+    const canShadow = this.world.occluders.size > 0 || this.heightFields.length > 0 || this.meshGround.size > 0;
     const seen = new Set<number>();
     let drawn = 0;
     for (let i = 0; i < view.ids.length; i++) {

@@ -87,4 +87,20 @@ describe('decorations', () => {
     expect(heightFieldSurfaceY(hf, 20, 0)).toBeNull();
     expect(heightFieldSurfaceY(crate, 0, 0)).toBeNull();
   });
+
+  it('lays the shadow of a body in the air on the triangle-mesh terrain below it', () => {
+    const r = fakeRenderer();
+    const world = new WorldView(r, () => undefined);
+    // One triangle pair over x, z ∈ [−5, 5], sloping up along x: y = 1 + x / 10.
+    const terrain: BodyDescriptor = { id: 8, shape: { kind: 'mesh', positions: [-5, 0.5, -5, 5, 1.5, -5, -5, 0.5, 5, 5, 1.5, 5], indices: [0, 2, 1, 1, 2, 3] }, color: [0.4, 0.6, 0.4], motion: 'static', hidden: false, position: { x: 0, y: 0, z: 0 }, rotation: I };
+    world.reset([terrain], [crate]);
+    const d = new Decorations(r, world);
+    d.update(view([[2, 3, 6, 1]]), 0);
+    const shadows = r.store.ids().filter((id) => id >= 2 * 2 ** 40 && id < 3 * 2 ** 40);
+    expect(shadows).toHaveLength(1);
+    const pose = r.store.pose(shadows[0])!;
+    expect(pose[0]).toBeCloseTo(3, 6);
+    expect(pose[1]).toBeGreaterThan(1.3);
+    expect(pose[1]).toBeLessThan(1.35);
+  });
 });
