@@ -61,7 +61,7 @@ async function connect(url: string, name: string, decodeAll: boolean): Promise<B
         resolve();
       }
       if (m.type === 'snapshot') {
-        const header = readSnapshotHeader(m.bytes);
+        const header = readSnapshotHeader(m.bytes, c.lastTick > 0 ? c.lastTick : null);
         if (c.firstSnapshotBytes === 0) c.firstSnapshotBytes = data.byteLength;
         if (decoder) decoder.decode(m.bytes); // client 1 decodes everything (a real client's work); others only ack
         c.lastTick = header.tick;

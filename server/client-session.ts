@@ -308,7 +308,7 @@ export class ClientSession implements MemberSink, ResumeHolder {
     if (kind === DeliveryKind.Snapshot && size > 0) {
       this.stats.snapshotsSent++;
       this.stats.snapshotBytes += size;
-      const tick = snapshotTick(bytes);
+      const tick = snapshotTick(bytes, this.link.lastSnapshotTick);
       if (tick !== null) this.link.snapshotSent(tick, this.ctx.clock.nowMs());
     }
   }

@@ -53,7 +53,7 @@ function movingBodies(sim: Simulation): { moving: number; awake: number } {
 }
 
 /** Player 1 driving the big cube towards the waypoints in turn (sprinting forward, yaw at the next waypoint). */
-function cubeDriver(sim: Simulation): (tick: number) => TickInputRecord {
+export function cubeDriver(sim: Simulation): (tick: number) => TickInputRecord {
   let next = 0;
   const bigId = (): number | undefined => sim.descriptors().find((d) => d.motion === 'dynamic' && d.shape.kind === 'box' && d.shape.halfExtents.x >= 1)?.id;
   return (tick) => {
@@ -169,7 +169,11 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
     pushedKbps: round(downKbps(b.streams.phase(hz, 'pushed')), 1),
     atRestKbps: round(downKbps(b.streams.phase(hz, 'atRest')), 1),
     atRestBytesPerSnapshot: round(b.streams.phase(hz, 'atRest').snapshotBytes / Math.max(1, b.streams.phase(hz, 'atRest').snapshots), 1),
+    pushedBytesPerSnapshot: round(b.streams.phase(hz, 'pushed').snapshotBytes / Math.max(1, b.streams.phase(hz, 'pushed').snapshots), 1),
   });
+  const perSnapshot = (c: PhaseCounters, us: number): number => round(us / Math.max(1, c.snapshots), 1);
+  const decodeUs = { steady: perSnapshot(steady60, steady60.decodeUs), pushed: perSnapshot(pushed60, pushed60.decodeUs) };
+  const encodeUs = { steady: perSnapshot(steady60, steady60.encodeUs), pushed: perSnapshot(pushed60, pushed60.encodeUs) };
   const rates = RATES_HZ.map((hz) => {
     const w = whole(hz);
     return { rateHz: hz, oursKbps: k(w.snapshotBytes, seconds), oursMeanSnapshotBytes: round(w.snapshotBytes / w.snapshots, 1), fullSnapshots: w.fullSnapshots, snapshots: w.snapshots, naiveKbps: k(w.naiveBytes, seconds), colyseusKbps: k(w.colyseusBytes, seconds), colyseusPatches: w.colyseusPatches, oursTotalWithEventsKbps: k(w.snapshotBytes + w.eventBytes, seconds) };
@@ -182,6 +186,8 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
     { figure: 'bandwidth', measure: `downstream, steady: the figure's bot after its first second (${seconds - 1} s, 60 Hz)`, value: down.steady, unit: 'kbps', digits: 1 },
     { figure: 'bandwidth', measure: `downstream, big cube pushed through the field non-stop (${pushSeconds} s, 60 Hz, median ${b.awakePushedMedian} bodies awake)`, value: down.pushed, unit: 'kbps', digits: 1, goal: { op: '<=', value: GOAL_PUSHED_KBPS } },
     { figure: 'bandwidth', measure: `downstream, at rest (${restSeconds} s, 60 Hz, ${byPhase(60).atRestBytesPerSnapshot} B per snapshot)`, value: down.atRest, unit: 'kbps', digits: 1, goal: { op: '<=', value: GOAL_AT_REST_KBPS } },
+    { figure: 'bandwidth', measure: `client decode per snapshot, pushed (Node, ${CUBES_SCENE.label}, 60 Hz; steady ${decodeUs.steady} µs)`, value: decodeUs.pushed, unit: 'µs', digits: 1 },
+    { figure: 'bandwidth', measure: `server encode per client snapshot, pushed (unshared: one client; steady ${encodeUs.steady} µs)`, value: encodeUs.pushed, unit: 'µs', digits: 1 },
     { figure: 'bandwidth', measure: `downstream snapshots, whole bot run incl. join (${seconds} s, 60 Hz)`, value: r60.oursKbps, unit: 'kbps', digits: 1, goal: { op: '<=', value: GOAL_KBPS } },
     { figure: 'bandwidth', measure: 'downstream snapshots, whole bot run, 20 Hz', value: r20.oursKbps, unit: 'kbps', digits: 1 },
     { figure: 'bandwidth', measure: 'plain msgpackr of every body, whole bot run, 60 Hz', value: r60.naiveKbps, unit: 'kbps', digits: 0 },
@@ -200,6 +206,8 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
       kbpsPerClient20Hz: r20.oursKbps,
       naiveKbps60Hz: r60.naiveKbps,
       colyseusKbps60Hz: r60.colyseusKbps,
+      snapshotDecodeUs60Hz: decodeUs.pushed,
+      snapshotEncodeUs60Hz: encodeUs.pushed,
     },
     detail: {
       scene: CUBES_SCENE,
@@ -215,6 +223,8 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
       awakeAtRestStart: b.awakeAtRestStart,
       eventsKbps: k(whole(60).eventBytes, seconds),
       phases: RATES_HZ.map(byPhase),
+      decodeUsPerSnapshot: decodeUs,
+      encodeUsPerSnapshot: encodeUs,
       rates,
     },
     rows,
@@ -235,7 +245,7 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
     ],
     notes: [
       `Downstream (server → one client) on ${CUBES_SCENE.label}, seed 1, 60 Hz snapshots unless said otherwise, acks ${RTT_MS} ms (${RTT_TICKS} ticks) after each snapshot; every snapshot was decoded and matched the server's frame bit for bit. Sizes include the WebSocket header.`,
-      `Join, steady, pushed and at rest count everything the client receives: snapshot messages (msgpack envelope + bit-packed delta, descriptors of spawned bodies) and events (joins, spawns, removals, sensors); join adds the ${welcome} B welcome the real server sends (scene and ${CUBES_SCENE.label}'s body descriptors). Join and steady: the figure's bot (player 1 rolls the big cube, walks, jumps, fires), split at its first second. Pushed: a driver steers the big cube along rows across the field for ${pushSeconds} s (after 2 s to join and reach it), at most ${b.awakePushedMax} bodies awake. At rest: the driver stands still until no body is awake (${round(b.settleSeconds, 1)} s here), then ${restSeconds} s.`,
+      `Join, steady, pushed and at rest count everything the client receives: snapshot messages (the opcode byte and range-coded delta, or a msgpack envelope when descriptors of spawned bodies ride along) and events (joins, spawns, removals, sensors); join adds the ${welcome} B welcome the real server sends (scene and ${CUBES_SCENE.label}'s body descriptors). Join and steady: the figure's bot (player 1 rolls the big cube, walks, jumps, fires), split at its first second. Pushed: a driver steers the big cube along rows across the field for ${pushSeconds} s (after 2 s to join and reach it), at most ${b.awakePushedMax} bodies awake. At rest: the driver stands still until no body is awake (${round(b.settleSeconds, 1)} s here), then ${restSeconds} s.`,
       `Whole-run keys (kbpsPerClient60Hz/20Hz, naiveKbps60Hz, colyseusKbps60Hz) are snapshot messages only over the bot's ${seconds} s, join included, the codec comparison: plain msgpackr is [opcode, tick, [[id, x, y, z, qx, qy, qz, qw]…], characters] with float32 numbers every snapshot; Colyseus a Schema with a MapSchema of bodies (float32 fields, the same quantized values), one patch per snapshot tick over its reliable stream (empty patches not sent), plus its 1-byte protocol code.`,
     ],
   };

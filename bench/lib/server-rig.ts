@@ -96,6 +96,8 @@ interface RigClient {
   inbound: Map<number, Uint8Array[]>;
   bytesDown: number;
   snapshots: number;
+  /** The newest snapshot tick received (completes the next delta snapshot's tick). */
+  snapshotTick: number | null;
   /** Size on the wire of the welcome the server sent (WebSocket framing included). */
   welcomeBytes: number;
 }
@@ -287,6 +289,7 @@ export async function startServerRig(opts: ServerRigOptions): Promise<ServerRig>
       inbound: new Map(),
       bytesDown: 0,
       snapshots: 0,
+      snapshotTick: null,
       welcomeBytes: wsFrameBytes(link.outbox[0].length),
     });
   }
@@ -329,10 +332,12 @@ export async function startServerRig(opts: ServerRigOptions): Promise<ServerRig>
           if (m.message.type === 'snapshot') {
             c.snapshots++;
             // The snapshot reaches the client after one way; its ack rides on the first input message sent after that.
+            const tick = readSnapshotHeader(m.message.bytes, c.snapshotTick).tick;
+            c.snapshotTick = tick;
             const at = now - 1 + opts.oneWayTicks;
             const list = c.arriving.get(at);
-            if (list) list.push(readSnapshotHeader(m.message.bytes).tick);
-            else c.arriving.set(at, [readSnapshotHeader(m.message.bytes).tick]);
+            if (list) list.push(tick);
+            else c.arriving.set(at, [tick]);
           } else if (m.message.type === 'bye') throw new Error(`server rig: client ${c.playerId} was sent away: ${m.message.message}`);
         }
         for (const [at, ticks] of c.arriving) {

@@ -18,10 +18,13 @@ export interface PhaseCounters {
   naiveBytes: number;
   colyseusBytes: number;
   colyseusPatches: number;
+  /** Time in SnapshotEncoder.encode (the server's per-client work, unshared) and SnapshotDecoder.decode (µs, summed). */
+  encodeUs: number;
+  decodeUs: number;
 }
 
 function zero(): PhaseCounters {
-  return { ticks: 0, snapshotBytes: 0, snapshots: 0, fullSnapshots: 0, eventBytes: 0, naiveBytes: 0, colyseusBytes: 0, colyseusPatches: 0 };
+  return { ticks: 0, snapshotBytes: 0, snapshots: 0, fullSnapshots: 0, eventBytes: 0, naiveBytes: 0, colyseusBytes: 0, colyseusPatches: 0, encodeUs: 0, decodeUs: 0 };
 }
 
 interface RateStream {
@@ -68,12 +71,17 @@ export class SnapshotStreams {
       s.accumulator -= 60;
       frame ??= quantizeFrame(this.format, tick, sim.readBodyStates(), sim.characters());
       while (s.acks.length > 0 && s.acks[0].atTick <= t) s.encoder.acknowledge(s.acks.shift()!.tick);
+      const t0 = performance.now();
       const encoded = s.encoder.encode(frame, (id) => sim.bodyDescriptor(id));
+      const t1 = performance.now();
       const message = encodeServerMessage({ type: 'snapshot', bytes: encoded.bytes, descriptors: encoded.descriptors });
       c.snapshotBytes += wsFrameBytes(message.length);
       c.snapshots++;
       if (encoded.baselineTick === null) c.fullSnapshots++;
+      const t2 = performance.now();
       const decoded = s.decoder.decode(encoded.bytes);
+      c.decodeUs += (performance.now() - t2) * 1000;
+      c.encodeUs += (t1 - t0) * 1000;
       if (!framesEqual(decoded.frame, frame)) throw new Error(`bandwidth: the ${s.rateHz} Hz snapshot of tick ${tick} did not decode to the frame sent`);
       s.acks.push({ atTick: t + this.rttTicks, tick });
       if (s.colyseus) {

@@ -50,6 +50,8 @@ interface LightBot {
   pingsSent: number;
   nextPingMs: number;
   closed: boolean;
+  /** The newest snapshot tick received (completes the next delta snapshot's tick). */
+  snapshotTick: number | null;
 }
 
 const sent = { input: 0, ack: 0, ping: 0, bytes: 0 };
@@ -108,9 +110,9 @@ function onMessage(b: LightBot, data: Buffer): void {
   const m = r.message;
   if (m.type === 'snapshot') {
     received.snapshots++;
-    const tick = readSnapshotHeader(m.bytes).tick;
-    sawSnapshot(b, tick, now);
-    b.acks.decoded(tick);
+    b.snapshotTick = readSnapshotHeader(m.bytes, b.snapshotTick).tick;
+    sawSnapshot(b, b.snapshotTick, now);
+    b.acks.decoded(b.snapshotTick);
   } else if (m.type === 'pong' && b.sync) {
     b.sync.addSample({ sentLocalMs: m.clientTimeMs, receivedLocalMs: now, serverTick: m.serverTick, serverTimeMs: m.serverTimeMs });
     b.missedInputTicks = m.missedInputTicks;
@@ -124,7 +126,7 @@ function onMessage(b: LightBot, data: Buffer): void {
 
 function connectBot(i: number): Promise<LightBot> {
   const ws = new WebSocket(url, { perMessageDeflate: false });
-  const bot: LightBot = { ws, room: rooms > 0 ? i % rooms : 0, lastSnapshotMs: -1, lastSnapshotTick: -1, firstSnapshotTick: -1, sync: null, lead: null, sender: new InputSender({ redundancy: DEFAULT_INPUT_REDUNDANCY }), acks: new AckCarrier(), missedInputTicks: null, pingsSent: 0, nextPingMs: 0, closed: false };
+  const bot: LightBot = { ws, room: rooms > 0 ? i % rooms : 0, lastSnapshotMs: -1, lastSnapshotTick: -1, firstSnapshotTick: -1, sync: null, lead: null, sender: new InputSender({ redundancy: DEFAULT_INPUT_REDUNDANCY }), acks: new AckCarrier(), missedInputTicks: null, pingsSent: 0, nextPingMs: 0, closed: false, snapshotTick: null };
   return new Promise((resolve, reject) => {
     ws.on('open', () => send(bot, { type: 'hello', version: PROTOCOL_VERSION, name: `light-${i + 1}`, room: rooms > 0 ? `r${(i % rooms) + 1}` : null }));
     ws.on('message', (data: Buffer) => {

@@ -2,18 +2,16 @@
 // its newest input over the room's tick, and a round-trip time measured from each snapshot sent to its ack (the
 // client library acks a snapshot as soon as it has decoded it). Plain counters: no timers, no allocation per message.
 import { ServerOpcode } from '../../shared/protocol/opcodes.ts';
+import { readSnapshotHeader } from '../../shared/protocol/snapshot-codec.ts';
 
 const SNAPSHOT_OPCODE: number = ServerOpcode.Snapshot;
 
-/**
- * The tick of a framed snapshot message (`[18, <snapshot bytes>, …]` in msgpack; the snapshot starts with its tick as
- * 32 little-endian bits: shared/protocol/snapshot-codec.ts), or null when the bytes do not start like one. Reads only
- * those headers: the session hands snapshots on as bytes.
- */
-export function snapshotTick(bytes: Uint8Array): number | null {
-  let i = 0;
-  const head = bytes[i++];
+/** The snapshot bytes inside a framed snapshot message (raw `[18, …]` or msgpack `[18, <bin>, …]`), or null. */
+function snapshotPayload(bytes: Uint8Array): Uint8Array | null {
+  const head = bytes[0];
   if (head === undefined) return null;
+  if (head === SNAPSHOT_OPCODE) return bytes.length > 1 ? bytes.subarray(1) : null;
+  let i = 1;
   if (head === 0xdc) i += 2;
   else if (head === 0xdd) i += 4;
   else if (head < 0x90 || head > 0x9f) return null;
@@ -29,8 +27,22 @@ export function snapshotTick(bytes: Uint8Array): number | null {
     length = (bytes[i] * 0x1000000 + ((bytes[i + 1] << 16) | (bytes[i + 2] << 8) | bytes[i + 3])) >>> 0;
     i += 4;
   } else return null;
-  if (length < 4 || i + 4 > bytes.length) return null;
-  return (bytes[i] | (bytes[i + 1] << 8) | (bytes[i + 2] << 16) | (bytes[i + 3] << 24)) >>> 0;
+  if (i + length > bytes.length) return null;
+  return bytes.subarray(i, i + length);
+}
+
+/**
+ * The tick of a framed snapshot message, or null when the bytes do not start like one. Reads only the snapshot's
+ * header (shared/protocol/snapshot-codec.ts); `referenceTick`, the previous snapshot's tick, completes a delta's tick.
+ */
+export function snapshotTick(bytes: Uint8Array, referenceTick: number | null): number | null {
+  const payload = snapshotPayload(bytes);
+  if (payload === null) return null;
+  try {
+    return readSnapshotHeader(payload, referenceTick).tick;
+  } catch {
+    return null;
+  }
 }
 
 /** How many sent snapshots wait for their ack (older ones are forgotten: their ack no longer measures anything). */
@@ -46,11 +58,14 @@ export class LinkStats {
   inputLeadTicks: number | null = null;
   /** Smoothed snapshot → ack round trip (ms); null before the first ack. */
   rttMs: number | null = null;
+  /** The tick of the newest snapshot sent; null before the first. */
+  lastSnapshotTick: number | null = null;
   private readonly sentTick = new Int32Array(PENDING_ACKS).fill(-1);
   private readonly sentMs = new Float64Array(PENDING_ACKS);
 
   /** A snapshot for `tick` went out at `nowMs`. */
   snapshotSent(tick: number, nowMs: number): void {
+    this.lastSnapshotTick = tick;
     const slot = tick % PENDING_ACKS;
     this.sentTick[slot] = tick;
     this.sentMs[slot] = nowMs;

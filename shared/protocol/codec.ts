@@ -154,6 +154,14 @@ export function encodeServerMessage(m: ServerMessage): Uint8Array {
     case 'pong':
       return packr.pack([ServerOpcode.Pong, m.clientTimeMs, m.serverTick, m.serverTimeMs, m.missedInputTicks, m.roomTicksPerSecond, m.roomSlow]);
     case 'snapshot':
+      // Without descriptors or game state, a snapshot is its opcode byte and the snapshot bytes: not msgpack (a
+      // msgpack frame starts with an array header), which saves the array, bin and null headers on the hot path.
+      if (m.descriptors.length === 0 && m.state === undefined) {
+        const out = new Uint8Array(1 + m.bytes.length);
+        out[0] = ServerOpcode.Snapshot;
+        out.set(m.bytes, 1);
+        return out;
+      }
       if (m.state !== undefined) return packr.pack([ServerOpcode.Snapshot, m.bytes, m.descriptors.length > 0 ? packDescriptors(m.descriptors) : null, m.state]);
       return packr.pack([ServerOpcode.Snapshot, m.bytes, m.descriptors.length > 0 ? packDescriptors(m.descriptors) : null]);
     case 'events':

@@ -13,8 +13,10 @@
  * 8: predict mode for the game API: record bits carry game input values and game messages, checkpoint input rows
  *    an optional eighth element (the player's game input values).
  * 9: the welcome's inputDelayTicks (predict mode's input delay the room announces).
+ * 10: range-coded snapshots (16-bit delta ticks, "nothing changed" snapshots of a few bytes); a snapshot without
+ *    descriptors or game state is framed as its opcode byte followed by the snapshot bytes, not as msgpack.
  */
-export const PROTOCOL_VERSION = 9;
+export const PROTOCOL_VERSION = 10;
 
 /** Opcodes of messages a client sends to the server (1–15). */
 export const ClientOpcode = {

@@ -262,6 +262,7 @@ function foreignWelcomeVersion(value: unknown): number | null {
 export function decodeServerMessage(data: unknown): ServerDecodeResult {
   const bytes = toBytes(data);
   if (bytes === null) return { ok: false, error: 'expected a binary frame' };
+  if (bytes.length > 1 && bytes[0] === ServerOpcode.Snapshot) return { ok: true, message: { type: 'snapshot', bytes: new Uint8Array(bytes.buffer, bytes.byteOffset + 1, bytes.length - 1), descriptors: [] } };
   const frame = decodeFrame(bytes, MAX_SERVER_FRAME_DEPTH);
   if (!frame.ok) return { ok: false, error: `not a plain msgpack value: ${frame.error}` };
   const foreign = foreignWelcomeVersion(frame.value);

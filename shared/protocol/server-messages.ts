@@ -68,7 +68,7 @@ export interface PongMessage {
   roomSlow: boolean;
 }
 
-/** One snapshot: the bit-packed frame plus descriptors of newly spawned bodies the client may not have. */
+/** One snapshot: the encoded frame plus descriptors of newly spawned bodies the client may not have. */
 export interface SnapshotMessage {
   type: 'snapshot';
   bytes: Uint8Array;

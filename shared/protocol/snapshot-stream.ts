@@ -4,7 +4,7 @@
 import type { BodyDescriptor } from '../sim/types.ts';
 import { SNAPSHOT_HISTORY_SIZE } from './limits.ts';
 import type { SnapshotFormat } from './quantization.ts';
-import { decodeSnapshot, encodeSnapshot, readSnapshotHeader } from './snapshot-codec.ts';
+import { decodeSnapshot, encodeSnapshot, MAX_BASELINE_AGE, readSnapshotHeader } from './snapshot-codec.ts';
 import type { QuantizedFrame } from './snapshot-frame.ts';
 
 /** A bounded map tick → entry that forgets the oldest tick first (so a late, stale entry never pushes out newer ones). */
@@ -82,7 +82,7 @@ export class SharedFrameWork {
 /** One encoded snapshot for one client. */
 export interface EncodedSnapshot {
   tick: number;
-  /** The bit-packed frame (docs/protocol.md, "Snapshot bit layout"). */
+  /** The encoded frame (docs/protocol.md, "Snapshots", "Layout"). */
   bytes: Uint8Array;
   /** The acked frame this is a delta against; null for a full snapshot. */
   baselineTick: number | null;
@@ -182,12 +182,13 @@ export class SnapshotEncoder {
   /**
    * Encodes a frame for this client and remembers it as a possible baseline. `describe(id)` returns a body's
    * descriptor; a spawned body without one throws (a server bug, not a client's doing). `shared` (optional) is the
-   * work cache of THIS frame object and the same format, used by every client of a room in one tick: the bit-packed
+   * work cache of THIS frame object and the same format, used by every client of a room in one tick: the encoded
    * bytes and the scan for bodies new since a baseline then cost once per distinct baseline instead of once per client.
    */
   encode(frame: QuantizedFrame, describe: (bodyId: number) => BodyDescriptor | undefined, shared?: SharedFrameWork): EncodedSnapshot {
     const baseEntry = this.ackedTick >= 0 ? this.sent.get(this.ackedTick) : undefined;
-    const baseline = baseEntry !== undefined && baseEntry.frame.tick < frame.tick ? baseEntry.frame : null;
+    const usable = baseEntry !== undefined && baseEntry.frame.tick < frame.tick && frame.tick - baseEntry.frame.tick <= MAX_BASELINE_AGE;
+    const baseline = usable ? baseEntry.frame : null;
     // The bytes depend only on (format, frame, baseline): clients of one room that acked the same tick share them.
     const key = baseline === null ? -1 : baseline.tick;
     let bytes = shared?.bytes.get(key);
@@ -262,10 +263,11 @@ export class SnapshotDecoder {
 
   /** Decodes bytes into the server's exact frame; throws a clear Error on a missing baseline or corrupt bytes. */
   decode(bytes: Uint8Array): DecodedSnapshot {
-    const frame = decodeSnapshot(this.format, bytes, (tick) => this.frames.get(tick));
+    const reference = this.newest?.tick ?? null;
+    const frame = decodeSnapshot(this.format, bytes, (tick) => this.frames.get(tick), reference);
     this.frames.set(frame.tick, frame);
     if (this.newest === null || frame.tick > this.newest.tick) this.newest = frame;
-    const header = readSnapshotHeader(bytes);
+    const header = readSnapshotHeader(bytes, reference);
     return { frame, baselineTick: header.baselineTick, sizeBytes: bytes.length };
   }
 

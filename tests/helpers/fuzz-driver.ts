@@ -90,6 +90,8 @@ class FuzzSocket {
   readonly recent: HostileFrame[] = [];
   welcomed = false;
   tick = 0;
+  /** The newest snapshot tick received (completes the next delta snapshot's tick). */
+  snapshotTick: number | null = null;
   closed = false;
 
   constructor(n: number, stats: FuzzStats, url: string, localAddress: string | undefined) {
@@ -121,7 +123,8 @@ class FuzzSocket {
       this.welcomed = true;
       this.tick = m.tick;
     } else if (m.type === 'snapshot') {
-      this.tick = Math.max(this.tick, readSnapshotHeader(m.bytes).tick);
+      this.snapshotTick = readSnapshotHeader(m.bytes, this.snapshotTick).tick;
+      this.tick = Math.max(this.tick, this.snapshotTick);
     } else if (m.type === 'pong') {
       this.tick = Math.max(this.tick, m.serverTick);
     } else if (m.type === 'error') {

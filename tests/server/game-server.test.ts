@@ -58,7 +58,13 @@ describe('GameServer (in-process)', () => {
     h.ticks(2);
     expect(a.frames.length).toBeGreaterThan(80);
     // The first snapshot is full, the rest are deltas against acked baselines.
-    const kinds = a.ofType('snapshot').map((m) => readSnapshotHeader(m.bytes).baselineTick === null);
+    // A delta's 16-bit tick is completed from the previous snapshot's.
+    let previousTick: number | null = null;
+    const kinds = a.ofType('snapshot').map((m) => {
+      const header = readSnapshotHeader(m.bytes, previousTick);
+      previousTick = header.tick;
+      return header.baselineTick === null;
+    });
     expect(kinds[0]).toBe(true);
     expect(kinds.slice(1).every((full) => !full)).toBe(true);
     for (const f of a.frames) expect(framesEqual(f, serverFrames.get(f.tick)!), `tick ${f.tick}`).toBe(true);

@@ -43,9 +43,18 @@ describe('snapshotTick', () => {
     const format = createSnapshotFormat({ min: { x: -10, y: -10, z: -10 }, max: { x: 10, y: 10, z: 10 } });
     const frame = encodeSnapshot(format, emptyFrame(123_456), null);
     const message = encodeServerMessage({ type: 'snapshot', bytes: frame, descriptors: [] });
-    expect(snapshotTick(message)).toBe(123_456);
-    expect(snapshotTick(encodeServerMessage({ type: 'pong', clientTimeMs: 1, serverTick: 5, serverTimeMs: 2, missedInputTicks: 0, roomTicksPerSecond: 60, roomSlow: false }))).toBeNull();
-    expect(snapshotTick(new Uint8Array(0))).toBeNull();
-    expect(snapshotTick(message.subarray(0, 4))).toBeNull();
+    expect(snapshotTick(message, null)).toBe(123_456);
+    expect(snapshotTick(encodeServerMessage({ type: 'pong', clientTimeMs: 1, serverTick: 5, serverTimeMs: 2, missedInputTicks: 0, roomTicksPerSecond: 60, roomSlow: false }), null)).toBeNull();
+    expect(snapshotTick(new Uint8Array(0), null)).toBeNull();
+    expect(snapshotTick(message.subarray(0, 2), null)).toBeNull();
+  });
+
+  it('completes the 16-bit tick of a delta snapshot from the previous snapshot tick', () => {
+    const format = createSnapshotFormat({ min: { x: -10, y: -10, z: -10 }, max: { x: 10, y: 10, z: 10 } });
+    const tick = 3 * 65536 + 7;
+    const delta = encodeSnapshot(format, emptyFrame(tick), emptyFrame(tick - 5));
+    const message = encodeServerMessage({ type: 'snapshot', bytes: delta, descriptors: [] });
+    expect(snapshotTick(message, tick - 1)).toBe(tick);
+    expect(snapshotTick(message, null)).toBeNull();
   });
 });

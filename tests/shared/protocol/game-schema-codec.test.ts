@@ -62,7 +62,9 @@ describe('game-schema-codec', () => {
     const bytes = new Uint8Array([1, 2, 3]);
     const back = decodeServerMessage(encodeServerMessage({ type: 'snapshot', bytes, descriptors: [], state: ['play', 3.5] }));
     expect(back).toEqual({ ok: true, message: { type: 'snapshot', bytes, descriptors: [], state: ['play', 3.5] } });
-    expect(unpackFrame(encodeServerMessage({ type: 'snapshot', bytes, descriptors: [] }))).toHaveLength(3);
+    // Without state (or descriptors) the snapshot travels raw: its opcode byte, then the snapshot bytes.
+    expect(encodeServerMessage({ type: 'snapshot', bytes, descriptors: [] })).toEqual(new Uint8Array([18, 1, 2, 3]));
+    expect(decodeServerMessage(new Uint8Array([18, 1, 2, 3]))).toEqual({ ok: true, message: { type: 'snapshot', bytes, descriptors: [] } });
   });
 
   it('refuses snapshot state values that are neither finite numbers nor short strings', () => {

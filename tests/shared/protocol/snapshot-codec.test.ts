@@ -1,9 +1,10 @@
-// Tests of the snapshot bit layout: full and delta snapshots decode to the server's exact integers over long random
-// streams (any baseline), unchanged bodies cost nothing, and truncated or corrupt bytes fail with clear errors.
+// Tests of the snapshot layout: full and delta snapshots decode to the server's exact integers over long random
+// streams (any baseline), unchanged bodies cost nothing, delta ticks are completed from the receiver's newest tick,
+// and truncated, corrupt or random bytes fail with clear errors or decode to a well-formed frame, within bounded work.
 import { describe, expect, it } from 'vitest';
 import { createSnapshotFormat } from '../../../shared/protocol/quantization.ts';
-import { decodeSnapshot, encodeSnapshot, readSnapshotHeader } from '../../../shared/protocol/snapshot-codec.ts';
-import { framesEqual, quantizeFrame, type QuantizedFrame } from '../../../shared/protocol/snapshot-frame.ts';
+import { completeTick, decodeSnapshot, encodeSnapshot, MAX_BASELINE_AGE, readSnapshotHeader } from '../../../shared/protocol/snapshot-codec.ts';
+import { emptyFrame, framesEqual, quantizeFrame, type QuantizedFrame } from '../../../shared/protocol/snapshot-frame.ts';
 import { Prng } from '../../../shared/sim/prng.ts';
 import { SYNTH_BOUNDS, SyntheticWorld } from './synthetic-world.ts';
 
@@ -19,7 +20,7 @@ describe('snapshot-codec', () => {
     world.step();
     const frame = frameOf(world);
     const bytes = encodeSnapshot(format, frame, null);
-    expect(readSnapshotHeader(bytes)).toEqual({ tick: 1, baselineTick: null, bodyCount: frame.bodyIds.length, characterCount: 6 });
+    expect(readSnapshotHeader(bytes)).toEqual({ tick: 1, baselineTick: null, bodiesChanged: true, charactersChanged: true, payloadOffset: 5 });
     expect(framesEqual(decodeSnapshot(format, bytes, () => undefined), frame)).toBe(true);
   });
 
@@ -35,7 +36,7 @@ describe('snapshot-codec', () => {
       const baseline = older.length > 0 && rng.next() < 0.85 ? frames.get(older[rng.int(Math.max(0, older.length - 70), older.length - 1)])! : null;
       if (baseline) deltas++;
       const bytes = encodeSnapshot(format, frame, baseline);
-      const decoded = decodeSnapshot(format, bytes, (tick) => frames.get(tick));
+      const decoded = decodeSnapshot(format, bytes, (tick) => frames.get(tick), frame.tick - 1);
       expect(framesEqual(decoded, frame)).toBe(true);
       frames.set(frame.tick, decoded);
       if (frames.size > 80) frames.delete(frames.keys().next().value!);
@@ -51,8 +52,9 @@ describe('snapshot-codec', () => {
     const full = encodeSnapshot(format, b, null);
     const delta = encodeSnapshot(format, b, a);
     expect(full.length).toBeGreaterThan(8000);
-    expect(delta.length).toBeLessThanOrEqual(10);
-    expect(framesEqual(decodeSnapshot(format, delta, () => a), b)).toBe(true);
+    // Header only: the delta flag, 16 tick bits, the baseline age and two "nothing changed" bits.
+    expect(delta.length).toBe(3);
+    expect(framesEqual(decodeSnapshot(format, delta, () => a, a.tick), b)).toBe(true);
   });
 
   it('costs a few bytes per moved body in a delta', () => {
@@ -62,8 +64,8 @@ describe('snapshot-codec', () => {
     world.tick++;
     const b = frameOf(world);
     const delta = encodeSnapshot(format, b, a);
-    expect(delta.length).toBeLessThan(30);
-    expect(framesEqual(decodeSnapshot(format, delta, () => a), b)).toBe(true);
+    expect(delta.length).toBeLessThan(24);
+    expect(framesEqual(decodeSnapshot(format, delta, () => a, a.tick), b)).toBe(true);
   });
 
   it('refuses a baseline that is not older than the frame', () => {
@@ -77,7 +79,25 @@ describe('snapshot-codec', () => {
     const a = frameOf(world);
     world.step();
     const bytes = encodeSnapshot(format, frameOf(world), a);
-    expect(() => decodeSnapshot(format, bytes, () => undefined)).toThrow(/baseline tick 0 is not in the decoder's history/);
+    expect(() => decodeSnapshot(format, bytes, () => undefined, 0)).toThrow(/baseline tick 0 is not in the decoder's history/);
+    expect(() => decodeSnapshot(format, bytes, () => a)).toThrow(/needs the newest decoded tick/);
+  });
+
+  it('completes a delta tick from the newest tick the receiver decoded across the 16-bit wrap, in order or delayed', () => {
+    const tick = 5 * 65536 + 3;
+    const bytes = encodeSnapshot(format, emptyFrame(tick), emptyFrame(tick - 9));
+    expect(readSnapshotHeader(bytes, tick - 1)).toMatchObject({ tick, baselineTick: tick - 9 });
+    expect(readSnapshotHeader(bytes, tick - 9)).toMatchObject({ tick, baselineTick: tick - 9 });
+    // Delayed behind newer snapshots: the nearest tick with those low bits.
+    expect(readSnapshotHeader(bytes, tick + 500)).toMatchObject({ tick });
+    expect(completeTick(5, 0)).toBe(5);
+    expect(completeTick(65535, 2)).toBe(65535);
+    expect(completeTick(1, 65534)).toBe(65537);
+  });
+
+  it('refuses a baseline further back than a 16-bit tick can reach', () => {
+    expect(() => encodeSnapshot(format, emptyFrame(MAX_BASELINE_AGE + 1), emptyFrame(0))).toThrow(/more than/);
+    expect(encodeSnapshot(format, emptyFrame(MAX_BASELINE_AGE), emptyFrame(0)).length).toBeLessThan(8);
   });
 
   it('fails with a clear Error at every truncation point and on corrupt bits, never with anything else', () => {
@@ -86,9 +106,18 @@ describe('snapshot-codec', () => {
     for (let i = 0; i < 5; i++) world.step();
     const b = frameOf(world);
     const bytes = encodeSnapshot(format, b, a);
+    // The range coder reads zeros past the end (its flush trims them): a cut snapshot fails or decodes to another frame.
+    let cutRejected = 0;
     for (let len = 0; len < bytes.length; len++) {
-      expect(() => decodeSnapshot(format, bytes.subarray(0, len), () => a)).toThrow(Error);
+      try {
+        const decoded = decodeSnapshot(format, bytes.subarray(0, len), () => a, a.tick);
+        expect(framesEqual(decoded, b)).toBe(false);
+      } catch (e) {
+        expect((e as Error).message).toMatch(/snapshot|bit stream|range-coded/);
+        cutRejected++;
+      }
     }
+    expect(cutRejected).toBeGreaterThan(bytes.length / 2);
     const rng = new Prng(1);
     let rejected = 0;
     for (let trial = 0; trial < 2000; trial++) {
@@ -97,14 +126,37 @@ describe('snapshot-codec', () => {
       bad[bit >> 3] ^= 1 << (bit & 7);
       try {
         // A flip may still parse (a changed value, or an unused Exp-Golomb order): then it is a well-formed frame.
-        const decoded = decodeSnapshot(format, bad, () => a);
+        const decoded = decodeSnapshot(format, bad, () => a, a.tick);
         expect(decoded.bodies.length).toBe(decoded.bodyIds.length * 8);
       } catch (e) {
         expect(e).toBeInstanceOf(Error);
-        expect((e as Error).message).toMatch(/snapshot|bit stream/);
+        expect((e as Error).message).toMatch(/snapshot|bit stream|range-coded/);
         rejected++;
       }
     }
     expect(rejected).toBeGreaterThan(0);
+  });
+
+  it('turns random bytes against a 1000-body baseline into a clear Error or a bounded well-formed frame', () => {
+    const world = new SyntheticWorld({ seed: 14, bodies: 1000, characters: 4 });
+    const a = frameOf(world);
+    const rng = new Prng(7);
+    let rejected = 0;
+    for (let trial = 0; trial < 3000; trial++) {
+      const bytes = new Uint8Array(rng.int(0, 48));
+      for (let i = 0; i < bytes.length; i++) bytes[i] = rng.int(0, 255);
+      try {
+        const decoded = decodeSnapshot(format, bytes, (t) => (t === a.tick ? a : undefined), a.tick + rng.int(0, 5));
+        expect(decoded.bodies.length).toBe(decoded.bodyIds.length * 8);
+        // What random bytes can add is bounded by their length, whatever they claim.
+        expect(decoded.bodyIds.length).toBeLessThanOrEqual(a.bodyIds.length + bytes.length * 8);
+        expect(decoded.playerIds.length).toBeLessThanOrEqual(a.playerIds.length + bytes.length * 8);
+      } catch (e) {
+        expect(e).toBeInstanceOf(Error);
+        expect((e as Error).message).toMatch(/snapshot|bit stream|range-coded/);
+        rejected++;
+      }
+    }
+    expect(rejected).toBeGreaterThan(2000);
   });
 });

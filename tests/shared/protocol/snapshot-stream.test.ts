@@ -1,8 +1,11 @@
 // Tests of the per-client snapshot streams: acks pick the baseline, lost and reordered acks and snapshots never
-// break decoding, evicted baselines fall back to full snapshots, descriptors are resent until acked, and a real
+// break decoding, hostile raw snapshot frames mid-stream fail clearly, evicted baselines fall back to full snapshots, descriptors are resent until acked, and a real
 // Jolt stream decodes to the server's exact frames.
 import { describe, expect, it } from 'vitest';
 import { createSnapshotFormat } from '../../../shared/protocol/quantization.ts';
+import { encodeServerMessage } from '../../../shared/protocol/codec.ts';
+import { decodeServerMessage } from '../../../shared/protocol/server-message-decoder.ts';
+import { decodeSnapshot } from '../../../shared/protocol/snapshot-codec.ts';
 import { framesEqual, quantizeFrame, type QuantizedFrame } from '../../../shared/protocol/snapshot-frame.ts';
 import { SharedFrameWork, SnapshotDecoder, SnapshotEncoder, TickHistory, type EncodedSnapshot } from '../../../shared/protocol/snapshot-stream.ts';
 import { Prng } from '../../../shared/sim/prng.ts';
@@ -232,6 +235,48 @@ describe('snapshot-stream', () => {
     expect(enc.stats.delta).toBeGreaterThan(1500);
     // Baselines are acked frames, which the client decoded and still holds.
     expect(baselineMisses).toBe(0);
+  });
+
+  it('answers hostile raw snapshot frames mid-stream with a clear Error or a bounded frame, and keeps decoding the real ones', () => {
+    // A client's path: the raw frame [18, bytes…] through decodeServerMessage, then SnapshotDecoder. Every fourth
+    // snapshot of a real stream is followed by a mutated, cut or random copy.
+    const world = new SyntheticWorld({ seed: 31, bodies: 300, characters: 3 });
+    const enc = new SnapshotEncoder(format);
+    const dec = new SnapshotDecoder(format);
+    const rng = new Prng(77);
+    const outcomes = { rejected: 0, decoded: 0 };
+    for (let t = 0; t < 400; t++) {
+      world.step();
+      const frame = frameOf(world);
+      const snap = enc.encode(frame, (id) => world.describe(id));
+      const wire = encodeServerMessage({ type: 'snapshot', bytes: snap.bytes, descriptors: [] });
+      const r = decodeServerMessage(wire);
+      if (!r.ok || r.message.type !== 'snapshot') throw new Error('a real snapshot frame did not decode');
+      expect(framesEqual(dec.decode(r.message.bytes).frame, frame)).toBe(true);
+      enc.acknowledge(frame.tick);
+      if (t % 4 !== 3) continue;
+      const hostile = wire.slice(0, rng.int(1, wire.length + 8));
+      if (hostile.length > wire.length) for (let i = wire.length; i < hostile.length; i++) hostile[i] = rng.int(0, 255);
+      for (let k = rng.int(0, 4); k > 0; k--) hostile[rng.int(1, hostile.length - 1)] ^= 1 << rng.int(0, 7);
+      const h = decodeServerMessage(hostile);
+      if (!h.ok || h.message.type !== 'snapshot') {
+        outcomes.rejected++;
+        continue;
+      }
+      // Decoded against the real decoder's history without storing the result, so the real stream goes on.
+      try {
+        const got = decodeSnapshot(format, h.message.bytes, (tick) => dec.frame(tick), frame.tick);
+        expect(got.bodies.length).toBe(got.bodyIds.length * 8);
+        expect(got.bodyIds.length).toBeLessThanOrEqual(frame.bodyIds.length + hostile.length * 8);
+        outcomes.decoded++;
+      } catch (e) {
+        expect(e).toBeInstanceOf(Error);
+        expect((e as Error).message).toMatch(/snapshot|bit stream|range-coded/);
+        outcomes.rejected++;
+      }
+    }
+    expect(outcomes.rejected + outcomes.decoded).toBe(100);
+    expect(outcomes.rejected).toBeGreaterThan(30);
   });
 
   it('keeps cubes-901 at 60 Hz under 128 kbps per client with acks one 100 ms round trip late', async () => {
