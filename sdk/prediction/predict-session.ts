@@ -85,6 +85,8 @@ export interface PredictionStats {
   resyncs: number;
   /** Server hashes of confirmed ticks that matched the local simulation (one every 30 ticks). */
   hashesVerified: number;
+  /** Our state hashes after the last confirmed ticks that carry one (`tick`: the input record's), oldest first. */
+  confirmedHashes: Array<{ tick: number; hash: string }>;
   /** Frames advanced. */
   frames: number;
 }
@@ -104,6 +106,8 @@ export interface PredictLink {
 }
 
 const HISTORY = 600;
+/** Confirmed-tick hashes kept for stats() (one every 30 ticks: 8 s of play). */
+const CONFIRMED_HASHES_KEPT = 16;
 
 function percentile(values: readonly number[], p: number): number {
   if (values.length === 0) return 0;
@@ -150,6 +154,7 @@ export class PredictSession {
   private resyncSentMs: number | null = null;
   /** Hashes verified by predictors before the last resync. */
   private verifiedBefore = 0;
+  private readonly confirmedHashes: Array<{ tick: number; hash: string }> = [];
   private lastFrameMs: number | null = null;
 
   constructor(welcome: WelcomeMessage, opts: PredictOptions, link: PredictLink) {
@@ -272,6 +277,7 @@ export class PredictSession {
       desyncs: this.desyncs,
       resyncs: Math.max(0, this.checkpoints - 1),
       hashesVerified: this.verifiedBefore + (this.predictor?.hashesVerified ?? 0),
+      confirmedHashes: this.confirmedHashes.slice(),
       frames: this.frames,
     };
   }
@@ -312,6 +318,10 @@ export class PredictSession {
         confirmedEvents: (events) => this.link.events(events),
         confirmedState: (values) => this.link.gameState(values),
         desync: (tick, ours, theirs) => this.onDesync(tick, ours, theirs),
+        confirmedHash: (tick, hash) => {
+          this.confirmedHashes.push({ tick, hash });
+          if (this.confirmedHashes.length > CONFIRMED_HASHES_KEPT) this.confirmedHashes.shift();
+        },
       }, this.opts.maxAheadTicks ?? DEFAULT_MAX_AHEAD_TICKS, this.opts.checkpointEveryTicks ?? 4);
       const state = this.predictor.startState();
       if (state !== null) this.link.gameState(state);

@@ -73,6 +73,8 @@ export interface PredictorHandlers {
   confirmedState?(values: GameStateValue[]): void;
   /** The server's hash of a confirmed tick differs from ours. */
   desync(tick: number, ours: string, theirs: string): void;
+  /** Our state hash after a confirmed tick that carries one (whether or not the server's came with it). */
+  confirmedHash?(tick: number, hash: string): void;
 }
 
 function sameMessages(a: readonly GameMessage[] | undefined, b: readonly GameMessage[] | undefined): boolean {
@@ -294,6 +296,7 @@ export class Predictor {
       this.lastState = slot.state;
       this.handlers.confirmedState?.(slot.state);
     }
+    if (slot.hash !== null) this.handlers.confirmedHash?.(tick, slot.hash);
     if (theirs === null || slot.hash === null) return;
     if (slot.hash === theirs) this.verified++;
     else this.handlers.desync(tick, slot.hash, theirs);

@@ -252,7 +252,7 @@ export function regionChanged(a: CanvasPixels, b: CanvasPixels, fx: number, fy: 
  * rate but gets a deeper burst: the server shares this process with the test and two software-rendering browsers,
  * and when it stalls for a couple of seconds a client's on-time inputs arrive all at once.
  */
-export async function startAppServer(opts: { scenario: string; clientDir: string; params?: Record<string, number>; netMode?: 'snapshot' | 'predict' | 'auto' }): Promise<RunningServer> {
+export async function startAppServer(opts: { scenario: string; clientDir: string; params?: Record<string, number>; netMode?: 'snapshot' | 'predict' | 'auto'; recordDir?: string; recordHashEveryTicks?: number }): Promise<RunningServer> {
   return startServer({
     port: 0,
     host: '127.0.0.1',
@@ -260,6 +260,8 @@ export async function startAppServer(opts: { scenario: string; clientDir: string
     params: opts.params,
     netMode: opts.netMode,
     clientDir: opts.clientDir,
+    recordDir: opts.recordDir,
+    recordHashEveryTicks: opts.recordHashEveryTicks,
     logger: silentLogger(),
     metrics: createMetrics({ processMetrics: false }),
     limits: { inputs: { perSecond: 150, burst: 1200 }, messages: { perSecond: 300, burst: 2400 } },

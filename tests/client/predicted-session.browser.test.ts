@@ -1,0 +1,163 @@
+// A predicted session end to end, over a bad link: two browser pages and two predicting Node bots play one
+// character-course room for 60 s through a loopback link conditioner (50 ms each way, 10 ms jitter, 2% of chunks
+// held back by a retransmit, as on TCP). No client may desync; the state hashes the pages computed for confirmed
+// ticks must equal the ones the server recorded; the recording must replay; and at the end a key still moves the
+// own character on the first frame drawn after it.
+import { mkdtemp, readdir, rm } from 'node:fs/promises';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import type { Page } from 'playwright-core';
+import { afterAll, beforeAll, expect, it } from 'vitest';
+import { startBots, type BotsRun } from '../../cli/bots.ts';
+import { nodePredictOptions } from '../../cli/predict-options.ts';
+import { replayLog } from '../../cli/replay-session.ts';
+import type { TaosState } from '../../client/app/test-hook.ts';
+import { buildClient } from '../../scripts/build-client.ts';
+import { LogReader } from '../../server/log/log-reader.ts';
+import type { RunningServer } from '../../server/start-server.ts';
+import { createRoom, describeBrowser, launchBrowser, readHook, startAppServer, waitForHook, waitUntilStill, type BrowserSession } from '../helpers/browser.ts';
+import { startLinkConditioner, type LinkConditioner } from '../helpers/link-conditioner.ts';
+
+const PLAY_MS = 60_000;
+const ROOM = 'session';
+/** Keys the pages hold in turn while playing (W twice: the course is walked forwards more than back). */
+const KEYS = ['KeyW', 'KeyD', 'KeyW', 'KeyA', 'KeyS'] as const;
+
+/** A page in the room through the conditioner, in its own browser (a background tab draws no frames). */
+interface Player {
+  browser: BrowserSession;
+  page: Page;
+  errors: string[];
+  me: number;
+  /** The page's state hash of each confirmed tick it reported (input record tick → hash). */
+  hashes: Map<number, string>;
+}
+
+/** Adds the page's recent confirmed-tick hashes to `player.hashes`; returns the page's hook. */
+async function collectHashes(player: Player): Promise<TaosState> {
+  const hook = await readHook<TaosState>(player.page);
+  for (const { tick, hash } of hook.net.prediction?.confirmedHashes ?? []) player.hashes.set(tick, hash);
+  return hook;
+}
+
+/** The recorded state hashes of a log, by the input record tick they follow (a hash at tick counter c follows c − 1). */
+async function recordedHashes(file: string): Promise<Map<number, string>> {
+  const reader = await LogReader.open(file);
+  const hashes = new Map<number, string>();
+  try {
+    for await (const e of reader.entries()) if (e.type === 'hash' && e.tick > 0) hashes.set(e.tick - 1, e.hash);
+  } finally {
+    await reader.close();
+  }
+  return hashes;
+}
+
+describeBrowser('predicted session over a conditioned link', () => {
+  let server: RunningServer;
+  let link: LinkConditioner;
+  let recordDir: string;
+  let bots: BotsRun | null = null;
+  const players: Player[] = [];
+
+  beforeAll(async () => {
+    const built = await buildClient();
+    recordDir = await mkdtemp(join(tmpdir(), 'taos-session-'));
+    // A hash record every 30 ticks: on exactly the ticks the server sends clients a hash of.
+    server = await startAppServer({ scenario: 'character-course', clientDir: built.outDir, netMode: 'predict', recordDir, recordHashEveryTicks: 30 });
+    await createRoom(server.url, { scenario: 'character-course', roomId: ROOM, netMode: 'predict' });
+    link = await startLinkConditioner(server.port, { delayMs: 50, jitterMs: 10, lossRate: 0.02, retransmitMs: 200, seed: 7 });
+  }, 120_000);
+
+  afterAll(async () => {
+    bots?.stop();
+    for (const p of players) await p.browser.close();
+    await link?.close();
+    await server?.close('test over');
+    if (recordDir) await rm(recordDir, { recursive: true, force: true });
+  });
+
+  it('keeps pages and bots in step with the server for 60 s, with hashes equal to the recording', async () => {
+    const via = `http://127.0.0.1:${link.port}`;
+    for (const name of ['ann', 'bob']) {
+      const browser = await launchBrowser();
+      const { page, errors } = await browser.newPage();
+      const player: Player = { browser, page, errors, me: -1, hashes: new Map() };
+      players.push(player);
+      await page.goto(new URL(`/?room=${ROOM}&name=${name}`, via).href);
+      await waitForHook(page, "t.connected && t.characters.some((c) => c.playerId === t.playerId) && t.net.prediction !== null && t.net.prediction.mode === 'predict'", 45_000).catch(async (e) => {
+        const h = await readHook<TaosState>(page);
+        console.log('DEBUG', JSON.stringify({ page: h.page, connected: h.connected, error: h.error, net: h.net, chars: h.characters.length, frames: h.framesRendered }), errors);
+        throw e;
+      });
+      player.me = (await readHook<TaosState>(page)).playerId!;
+    }
+    bots = startBots({ url: `ws://127.0.0.1:${link.port}/`, count: 2, room: ROOM, seed: 3, predict: nodePredictOptions() });
+
+    // Play: each page holds one key after another (its own phase), and its confirmed hashes are gathered every
+    // second (a page keeps its last 16, 8 s of play).
+    const startMs = Date.now();
+    let step = 0;
+    while (Date.now() - startMs < PLAY_MS) {
+      await Promise.all(
+        players.map(async (p, i) => {
+          const key = KEYS[(step + i * 2) % KEYS.length];
+          await p.page.keyboard.down(key);
+          await p.page.waitForTimeout(600);
+          await p.page.keyboard.up(key);
+          await collectHashes(p);
+        }),
+      );
+      step++;
+      await new Promise((resolve) => setTimeout(resolve, 400));
+    }
+
+    // One key near the end: the own character moves on the first frame drawn after it, ahead of the server.
+    const ann = players[0];
+    await waitUntilStill(ann.page, ann.me);
+    await waitForHook(ann.page, 't.net.prediction.presentTick - t.net.prediction.confirmedTick < 50', 20_000);
+    const count = (await readHook<TaosState>(ann.page)).keyToMotion?.count ?? 0;
+    await ann.page.keyboard.down('KeyW');
+    await waitForHook(ann.page, `t.keyToMotion !== null && t.keyToMotion.count > ${count}`, 20_000);
+    await ann.page.keyboard.up('KeyW');
+    const moved = (await readHook<TaosState>(ann.page)).keyToMotion!;
+    expect(moved.shownAheadOfServerTicks).toBeGreaterThan(0);
+    expect({ frames: moved.frames, staleFrames: moved.staleFrames }).toEqual({ frames: 1, staleFrames: 0 });
+
+    // No page and no bot desynced; each checked the server's hashes all along (one every 30 ticks: ~120 in 60 s).
+    for (const p of players) {
+      const prediction = (await collectHashes(p)).net.prediction!;
+      expect({ mode: prediction.mode, desyncs: prediction.desyncs, resyncs: prediction.resyncs }).toEqual({ mode: 'predict', desyncs: 0, resyncs: 0 });
+      expect(prediction.hashesVerified).toBeGreaterThan(90);
+      expect(p.errors).toEqual([]);
+    }
+    bots.stop();
+    const report = await bots.done;
+    bots = null;
+    expect(report.bots.map((b) => ({ connected: b.connected, mode: b.prediction?.mode, desyncs: b.prediction?.desyncs }))).toEqual(
+      report.bots.map(() => ({ connected: true, mode: 'predict', desyncs: 0 })),
+    );
+    for (const b of report.bots) expect(b.prediction!.hashesVerified).toBeGreaterThan(90);
+    // The link really was bad: some chunks were held back by a retransmit.
+    expect(link.counts().lost).toBeGreaterThan(10);
+
+    for (const p of players) await p.page.close();
+    await server.close('test over');
+    const files = (await readdir(recordDir)).filter((f) => f.startsWith(`${ROOM}-`));
+    expect(files).toHaveLength(1);
+    const log = join(recordDir, files[0]);
+
+    // Every confirmed-tick hash a page computed is the one the server recorded for that tick.
+    const recorded = await recordedHashes(log);
+    for (const p of players) {
+      expect(p.hashes.size).toBeGreaterThan(90);
+      const mismatched = [...p.hashes].filter(([tick, hash]) => recorded.get(tick) !== hash);
+      expect(mismatched).toEqual([]);
+    }
+
+    // The recording replays with every recorded hash matching.
+    const replay = await replayLog(log);
+    expect(replay.status).toBe('ok');
+    expect(replay.ticks).toBeGreaterThan((PLAY_MS / 1000) * 60);
+    expect(replay.hashesChecked).toBeGreaterThan(120);
+  }, 150_000);
+});
