@@ -20,8 +20,8 @@ import { startLinkConditioner, type LinkConditioner } from '../helpers/link-cond
 
 const PLAY_MS = 60_000;
 const ROOM = 'session';
-/** Keys the pages hold in turn while playing (W twice: the course is walked forwards more than back). */
-const KEYS = ['KeyW', 'KeyD', 'KeyW', 'KeyA', 'KeyS'] as const;
+/** Keys the pages hold in turn while playing: a whole round leaves a character about where it started. */
+const KEYS = ['KeyW', 'KeyD', 'KeyS', 'KeyA'] as const;
 
 /** A page in the room through the conditioner, in its own browser (a background tab draws no frames). */
 interface Player {
@@ -78,29 +78,30 @@ describeBrowser('predicted session over a conditioned link', () => {
 
   it('keeps pages and bots in step with the server for 60 s, with hashes equal to the recording', async () => {
     const via = `http://127.0.0.1:${link.port}`;
-    for (const name of ['ann', 'bob']) {
-      const browser = await launchBrowser();
+    // Both pages at once, each in its own browser.
+    for (const browser of await Promise.all([launchBrowser(), launchBrowser()])) {
       const { page, errors } = await browser.newPage();
-      const player: Player = { browser, page, errors, me: -1, hashes: new Map() };
-      players.push(player);
-      await page.goto(new URL(`/?room=${ROOM}&name=${name}`, via).href);
-      await waitForHook(page, "t.connected && t.characters.some((c) => c.playerId === t.playerId) && t.net.prediction !== null && t.net.prediction.mode === 'predict'", 45_000).catch(async (e) => {
-        const h = await readHook<TaosState>(page);
-        console.log('DEBUG', JSON.stringify({ page: h.page, connected: h.connected, error: h.error, net: h.net, chars: h.characters.length, frames: h.framesRendered }), errors);
-        throw e;
-      });
-      player.me = (await readHook<TaosState>(page)).playerId!;
+      players.push({ browser, page, errors, me: -1, hashes: new Map() });
     }
+    await Promise.all(
+      players.map(async (p, i) => {
+        await p.page.goto(new URL(`/?room=${ROOM}&name=${['ann', 'bob'][i]}`, via).href);
+        await waitForHook(p.page, "t.connected && t.characters.some((c) => c.playerId === t.playerId) && t.net.prediction !== null && t.net.prediction.mode === 'predict'", 45_000);
+        p.me = (await readHook<TaosState>(p.page)).playerId!;
+      }),
+    );
     bots = startBots({ url: `ws://127.0.0.1:${link.port}/`, count: 2, room: ROOM, seed: 3, predict: nodePredictOptions() });
 
-    // Play: each page holds one key after another (its own phase), and its confirmed hashes are gathered every
-    // second (a page keeps its last 16, 8 s of play).
+    // Play: the pages hold the same key at the same time (side by side, they walk in step rather than into each
+    // other), one key after another; each page's confirmed hashes are gathered every second (it keeps the last 16,
+    // 8 s of play).
+    const firstConfirmed = await Promise.all(players.map(async (p) => (await collectHashes(p)).net.prediction!.confirmedTick!));
     const startMs = Date.now();
     let step = 0;
-    while (Date.now() - startMs < PLAY_MS) {
+    while (Date.now() - startMs < PLAY_MS || step % KEYS.length !== 0) {
       await Promise.all(
-        players.map(async (p, i) => {
-          const key = KEYS[(step + i * 2) % KEYS.length];
+        players.map(async (p) => {
+          const key = KEYS[step % KEYS.length];
           await p.page.keyboard.down(key);
           await p.page.waitForTimeout(600);
           await p.page.keyboard.up(key);
@@ -111,32 +112,43 @@ describeBrowser('predicted session over a conditioned link', () => {
       await new Promise((resolve) => setTimeout(resolve, 400));
     }
 
+    // No page desynced; each computed the hash of every confirmed hash tick (one in 30) of its play and had the
+    // server's for it. The room may run slower than real time on a loaded machine: the span is in the room's ticks.
+    const hashTicks: number[][] = [];
+    for (const [i, p] of players.entries()) {
+      const prediction = (await collectHashes(p)).net.prediction!;
+      expect({ mode: prediction.mode, desyncs: prediction.desyncs, resyncs: prediction.resyncs }).toEqual({ mode: 'predict', desyncs: 0, resyncs: 0 });
+      const span = prediction.confirmedTick! - firstConfirmed[i];
+      expect(span).toBeGreaterThan(20 * 60);
+      const expected: number[] = [];
+      for (let t = firstConfirmed[i]; t < prediction.confirmedTick!; t++) if ((t + 1) % 30 === 0) expected.push(t);
+      expect(expected.filter((t) => !p.hashes.has(t))).toEqual([]);
+      expect(prediction.hashesVerified).toBeGreaterThanOrEqual(expected.length);
+      hashTicks.push(expected);
+      expect(p.errors).toEqual([]);
+    }
+
     // One key near the end: the own character moves on the first frame drawn after it, ahead of the server.
     const ann = players[0];
     await waitUntilStill(ann.page, ann.me);
-    await waitForHook(ann.page, 't.net.prediction.presentTick - t.net.prediction.confirmedTick < 50', 20_000);
+    await waitForHook(ann.page, 't.net.prediction.presentTick - t.net.prediction.confirmedTick < 30', 20_000);
     const count = (await readHook<TaosState>(ann.page)).keyToMotion?.count ?? 0;
     await ann.page.keyboard.down('KeyW');
     await waitForHook(ann.page, `t.keyToMotion !== null && t.keyToMotion.count > ${count}`, 20_000);
     await ann.page.keyboard.up('KeyW');
-    const moved = (await readHook<TaosState>(ann.page)).keyToMotion!;
+    const after = await readHook<TaosState>(ann.page);
+    const moved = after.keyToMotion!;
     expect(moved.shownAheadOfServerTicks).toBeGreaterThan(0);
-    expect({ frames: moved.frames, staleFrames: moved.staleFrames }).toEqual({ frames: 1, staleFrames: 0 });
+    expect({ frames: moved.frames, staleFrames: moved.staleFrames, gapAfterTicks: after.net.prediction!.presentTick! - after.net.prediction!.confirmedTick! }).toMatchObject({ frames: 1, staleFrames: 0 });
 
-    // No page and no bot desynced; each checked the server's hashes all along (one every 30 ticks: ~120 in 60 s).
-    for (const p of players) {
-      const prediction = (await collectHashes(p)).net.prediction!;
-      expect({ mode: prediction.mode, desyncs: prediction.desyncs, resyncs: prediction.resyncs }).toEqual({ mode: 'predict', desyncs: 0, resyncs: 0 });
-      expect(prediction.hashesVerified).toBeGreaterThan(90);
-      expect(p.errors).toEqual([]);
-    }
+    // No bot desynced either; both checked the server's hashes throughout.
     bots.stop();
     const report = await bots.done;
     bots = null;
     expect(report.bots.map((b) => ({ connected: b.connected, mode: b.prediction?.mode, desyncs: b.prediction?.desyncs }))).toEqual(
       report.bots.map(() => ({ connected: true, mode: 'predict', desyncs: 0 })),
     );
-    for (const b of report.bots) expect(b.prediction!.hashesVerified).toBeGreaterThan(90);
+    for (const b of report.bots) expect(b.prediction!.hashesVerified).toBeGreaterThan(hashTicks[0].length / 2);
     // The link really was bad: some chunks were held back by a retransmit.
     expect(link.counts().lost).toBeGreaterThan(10);
 
@@ -149,15 +161,13 @@ describeBrowser('predicted session over a conditioned link', () => {
     // Every confirmed-tick hash a page computed is the one the server recorded for that tick.
     const recorded = await recordedHashes(log);
     for (const p of players) {
-      expect(p.hashes.size).toBeGreaterThan(90);
-      const mismatched = [...p.hashes].filter(([tick, hash]) => recorded.get(tick) !== hash);
-      expect(mismatched).toEqual([]);
+      const differ = [...p.hashes].filter(([tick, hash]) => recorded.get(tick) !== hash).map(([tick, hash]) => ({ tick, page: hash, log: recorded.get(tick) }));
+      expect(differ).toEqual([]);
     }
 
     // The recording replays with every recorded hash matching.
     const replay = await replayLog(log);
     expect(replay.status).toBe('ok');
-    expect(replay.ticks).toBeGreaterThan((PLAY_MS / 1000) * 60);
-    expect(replay.hashesChecked).toBeGreaterThan(120);
+    expect(replay.hashesChecked).toBeGreaterThan(hashTicks[0].length);
   }, 150_000);
 });
