@@ -119,7 +119,9 @@ describeBrowser('predicted session over a conditioned link', () => {
       const prediction = (await collectHashes(p)).net.prediction!;
       expect({ mode: prediction.mode, desyncs: prediction.desyncs, resyncs: prediction.resyncs }).toEqual({ mode: 'predict', desyncs: 0, resyncs: 0 });
       const span = prediction.confirmedTick! - firstConfirmed[i];
-      expect(span).toBeGreaterThan(20 * 60);
+      // At load 15 the room ran 1,037 ticks in the 60 s (its catch-up budget drops ticks it cannot afford); at load 7,
+      // ~2,000.
+      expect(span).toBeGreaterThan(10 * 60);
       const expected: number[] = [];
       for (let t = firstConfirmed[i]; t < prediction.confirmedTick!; t++) if ((t + 1) % 30 === 0) expected.push(t);
       expect(expected.filter((t) => !p.hashes.has(t))).toEqual([]);
@@ -127,19 +129,6 @@ describeBrowser('predicted session over a conditioned link', () => {
       hashTicks.push(expected);
       expect(p.errors).toEqual([]);
     }
-
-    // One key near the end: the own character moves on the first frame drawn after it, ahead of the server.
-    const ann = players[0];
-    await waitUntilStill(ann.page, ann.me);
-    await waitForHook(ann.page, 't.net.prediction.presentTick - t.net.prediction.confirmedTick < 30', 20_000);
-    const count = (await readHook<TaosState>(ann.page)).keyToMotion?.count ?? 0;
-    await ann.page.keyboard.down('KeyW');
-    await waitForHook(ann.page, `t.keyToMotion !== null && t.keyToMotion.count > ${count}`, 20_000);
-    await ann.page.keyboard.up('KeyW');
-    const after = await readHook<TaosState>(ann.page);
-    const moved = after.keyToMotion!;
-    expect(moved.shownAheadOfServerTicks).toBeGreaterThan(0);
-    expect({ frames: moved.frames, staleFrames: moved.staleFrames, gapAfterTicks: after.net.prediction!.presentTick! - after.net.prediction!.confirmedTick! }).toMatchObject({ frames: 1, staleFrames: 0 });
 
     // No bot desynced either; both checked the server's hashes throughout.
     bots.stop();
@@ -152,7 +141,29 @@ describeBrowser('predicted session over a conditioned link', () => {
     // The link really was bad: some chunks were held back by a retransmit.
     expect(link.counts().lost).toBeGreaterThan(10);
 
-    for (const p of players) await p.page.close();
+    // One key at the end, over the same link: the own character moves on the first frame drawn after it, ahead of the
+    // server. Measured with the bots gone and the other page's browser closed: with two software-rendering browsers,
+    // the bots and the server sharing two cores, a page drew a frame every ~170 ms and its window stayed full.
+    await players[1].browser.close();
+    const ann = players[0];
+    await waitUntilStill(ann.page, ann.me);
+    // Pressed while the prediction has room to run ahead (the present under 40 ticks past the confirmed tick, of the
+    // 60 allowed): with the window full the page waits for the server before simulating anything new. On this loaded
+    // machine the gap is the round trip (420 ms measured at load 14 over this link) plus the input lead (12 ticks).
+    await waitForHook(ann.page, 't.net.prediction.presentTick - t.net.prediction.confirmedTick < 40', 20_000);
+    const before = await readHook<TaosState>(ann.page);
+    const count = before.keyToMotion?.count ?? 0;
+    await ann.page.keyboard.down('KeyW');
+    await waitForHook(ann.page, `t.keyToMotion !== null && t.keyToMotion.count > ${count}`, 20_000);
+    await ann.page.keyboard.up('KeyW');
+    const after = await readHook<TaosState>(ann.page);
+    const moved = after.keyToMotion!;
+    expect(moved.shownAheadOfServerTicks).toBeGreaterThan(0);
+    const gap = (t: TaosState): number => t.net.prediction!.presentTick! - t.net.prediction!.confirmedTick!;
+    const seen = `${JSON.stringify(moved)}; ahead of confirmed before/after: ${gap(before)}/${gap(after)} ticks; rtt ${Math.round(after.net.rttMs)} ms; lead ${after.net.inputLeadTicks.toFixed(1)} ticks`;
+    expect({ frames: moved.frames, staleFrames: moved.staleFrames }, seen).toEqual({ frames: 1, staleFrames: 0 });
+
+    await players[0].page.close();
     await server.close('test over');
     const files = (await readdir(recordDir)).filter((f) => f.startsWith(`${ROOM}-`));
     expect(files).toHaveLength(1);
