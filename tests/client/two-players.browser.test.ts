@@ -129,7 +129,9 @@ describeBrowser('two players', () => {
     await a.page.keyboard.up('KeyW');
     await a.page.keyboard.up('ShiftLeft');
 
-    // The server's walker stops (two reads 250 ms apart agree); that is where it stands, at that tick.
+    // The page runs ahead of the server by its input lead (more on a loaded machine): first the server's walker walks
+    // the same way, then it stops (two reads 250 ms apart agree); that is where it stands, at that tick.
+    for (let i = 0; i < 80 && start[2] - onServer()[2] <= 2.5; i++) await a.page.waitForTimeout(250);
     let end = onServer();
     for (let i = 0; i < 60; i++) {
       await a.page.waitForTimeout(250);

@@ -91,6 +91,6 @@ describe('http-api', () => {
     });
     // No cost estimate for a test scenario: 'auto' stays on snapshots and the room list says why.
     const auto = await api.createRoom({ scenario: 'test-strip', roomId: 'plain' });
-    expect(auto.room).toMatchObject({ netMode: 'snapshot', netModeNote: 'no cost estimate for scenario test-strip: snapshot mode' });
+    expect(auto.room).toMatchObject({ netMode: 'snapshot', netModeNote: 'no cost estimate for scenario test-strip (its definition gives no tickCostMs): snapshot mode' });
   });
 });

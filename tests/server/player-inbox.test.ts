@@ -14,11 +14,15 @@ afterEach(async () => {
 
 const walk = (moveX: number): InputCommand => ({ ...NEUTRAL_INPUT, moveX });
 /** How many ticks each snapshot's baseline lags behind it (null: a full snapshot). */
-const baselineAges = (c: TestClient): Array<number | null> =>
-  c.ofType('snapshot').map((s) => {
-    const header = readSnapshotHeader(s.bytes);
+const baselineAges = (c: TestClient): Array<number | null> => {
+  let previousTick: number | null = null;
+  return c.ofType('snapshot').map((s) => {
+    // A delta carries the low bits of its tick, completed from the snapshot before it.
+    const header = readSnapshotHeader(s.bytes, previousTick);
+    previousTick = header.tick;
     return header.baselineTick === null ? null : header.tick - header.baselineTick;
   });
+};
 
 describe('PlayerInbox', () => {
   it('takes an ack riding on an input message as an ack: deltas against it follow, and no ack message is needed', async () => {
