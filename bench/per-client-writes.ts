@@ -4,7 +4,7 @@
 // calls per socket per tick (/proc/PID/io syscw, Linux). The cost per client per tick is the slope between the two
 // counts. With --against DIR (a checkout of another commit, e.g. `git archive main | tar -x -C DIR`, node_modules
 // linked), DIR's server and bots run in alternating rounds, so before/after share the machine's load.
-// Run: node_modules/.bin/node bench/per-client-cost.ts [--clients 16,96] [--rounds 2] [--window 5000] [--against DIR]
+// Run: node_modules/.bin/node bench/per-client-writes.ts [--clients 16,96] [--rounds 2] [--window 5000] [--against DIR]
 import { readFileSync } from 'node:fs';
 import { loadavg } from 'node:os';
 import { join, resolve } from 'node:path';

@@ -71,18 +71,6 @@ export class SnapshotFanOut {
     return this.formatCache;
   }
 
-  /** The descriptors of a frame's dynamic bodies now (a frame that leaves after its tick carries them along). */
-  describeDynamic(bodies: WorldFrame['bodies']): Map<number, BodyDescriptor> {
-    const out = new Map<number, BodyDescriptor>();
-    for (let i = 0; i < bodies.count; i++) {
-      const id = bodies.ids[i];
-      if (this.source.isSceneStatic(id)) continue;
-      const d = this.source.describe(id);
-      if (d) out.set(id, d);
-    }
-    return out;
-  }
-
   /** The framed events message of a tick: the room hands every member the same list, framed once. */
   eventsMessage(events: readonly SimEvent[]): Uint8Array {
     if (this.events?.list !== events) this.events = { list: events, message: encodeServerMessage({ type: 'events', events: [...events] }) };
