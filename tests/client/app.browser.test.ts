@@ -48,6 +48,8 @@ describeBrowser('client page', () => {
     expect(hook.scenario).toBe('shape-rain');
     expect(hook.playerId).toBeGreaterThan(0);
 
+    // The rain comes in waves (spawns recycle after 240 ticks): wait for a moment with bodies high up.
+    await waitForHook(page, 't.bodies.some((b) => b.position[1] > 2)', 15_000);
     const first = await canvasPixels(page);
     expect(fractionUnlike(first, dominantColor(first))).toBeGreaterThan(0.2);
     const falling = (await readHook<TaosState>(page)).bodies.filter((b) => b.position[1] > 2);
