@@ -90,7 +90,8 @@ export function dumpState(core: SimCore, copy = true, bodies?: BodyStates): Stat
   };
 }
 
-function hashPlayer(h: Hasher64, p: PlayerDump): void {
+// A player's identity and current input, as both hashes (of a dump, and streamed from the simulation) word them.
+function hashPlayerInput(h: Hasher64, p: Pick<PlayerDump, 'playerId' | 'joinIndex' | 'bodyId' | 'name' | 'input' | 'nextFireTick'>): void {
   h.word(p.playerId).word(p.joinIndex).word(p.bodyId).string(p.name);
   const i = p.input;
   h.word(i.moveX).word(i.moveZ).word(i.yaw).word(i.pitch).word(i.buttons).word(p.nextFireTick);
@@ -99,6 +100,10 @@ function hashPlayer(h: Hasher64, p: PlayerDump): void {
     h.word(i.game.length);
     for (const v of i.game) h.word(v);
   }
+}
+
+function hashPlayer(h: Hasher64, p: PlayerDump): void {
+  hashPlayerInput(h, p);
   h.f32Bits(p.position[0]).f32Bits(p.position[1]).f32Bits(p.position[2]);
   h.f64Bits(p.velocity[0]).f64Bits(p.velocity[1]).f64Bits(p.velocity[2]);
   h.word(p.groundState).f64Bits(p.pendingJumpSpeed);
@@ -159,13 +164,7 @@ export function hashState(core: SimCore, bodies: BodyStates): string {
   for (const p of players) {
     const c = p.controller;
     const pos = c.position;
-    h.word(p.playerId).word(p.joinIndex).word(p.bodyId).string(p.name);
-    const i = p.input;
-    h.word(i.moveX).word(i.moveZ).word(i.yaw).word(i.pitch).word(i.buttons).word(p.nextFireTick);
-    if (i.game !== undefined && i.game.length > 0) {
-      h.word(i.game.length);
-      for (const v of i.game) h.word(v);
-    }
+    hashPlayerInput(h, p);
     h.f32Bits(pos.x).f32Bits(pos.y).f32Bits(pos.z);
     h.f64Bits(c.velocity.x).f64Bits(c.velocity.y).f64Bits(c.velocity.z);
     h.word(GROUND_CODES[c.groundState]).f64Bits(c.pendingJumpSpeed);
