@@ -39,9 +39,13 @@ export class PredictFeed {
     return this.coder.state();
   }
 
-  /** The framed record message of the record just stepped (the simulation is now after it). */
-  frame(record: TickInputRecord): Uint8Array {
+  /**
+   * Advances the record coder past the record just stepped (the simulation is now after it) and returns its framed
+   * message, or null when `framed` is false: no member takes records this tick, so neither hash nor message is made.
+   */
+  frame(record: TickInputRecord, framed = true): Uint8Array | null {
     const { bits, joins } = this.coder.encode(record);
+    if (!framed) return null;
     const hash = carriesHash(record.tick) ? this.sim.stateHash() : null;
     return encodeServerMessage({ type: 'record', tickLow: record.tick & 0xff, bits, joins, hash });
   }

@@ -117,6 +117,15 @@ export class RoomPlayers {
     }
   }
 
+  /** Whether a connected member takes predict-mode records (no array made: asked every tick). */
+  anyTakesRecords(): boolean {
+    for (const p of this.byId.values()) {
+      const m = p.member;
+      if (m !== null && m.deliverRecord !== undefined && (m.takesRecords?.() ?? true)) return true;
+    }
+    return false;
+  }
+
   /** Seats whose member is connected, in seating order. */
   connected(): ConnectedPlayer[] {
     return [...this.byId.values()].filter((p): p is ConnectedPlayer => p.member !== null);

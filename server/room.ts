@@ -365,7 +365,8 @@ export class Room implements HostedRoom {
       this.tickClock.stop();
       this.paceMeter.paused();
     }
-    const send = this.deliver(tick, events, this.predictFeed?.frame(record) ?? null);
+    // A member that turns to predict mode later starts from a checkpoint after this tick: it never needs this record.
+    const send = this.deliver(tick, events, this.predictFeed?.frame(record, this.players.anyTakesRecords()) ?? null);
     if (this.opts.recorder?.release) this.opts.recorder.release(tick, send);
     else send();
     for (const fn of this.tickListeners) fn(record, events);

@@ -84,15 +84,28 @@ export class RecordDeltaCoder {
     const w = new BitWriter(32);
     w.writeExpGolomb(record.leaves.length, 0);
     for (const id of record.leaves) w.writeBits(id, 32);
-    const leaving = new Set(record.leaves);
-    const present = this.players.filter((p) => !leaving.has(p.playerId)).concat(record.joins.map((j) => this.joined(j))).sort((a, b) => a.playerId - b.playerId);
+    // Most ticks neither add nor remove anyone: the players stay as they are (ascending id), no copy made.
+    let present = this.players;
+    if (record.leaves.length > 0 || record.joins.length > 0) {
+      const leaving = new Set(record.leaves);
+      present = this.players.filter((p) => !leaving.has(p.playerId)).concat(record.joins.map((j) => this.joined(j))).sort((a, b) => a.playerId - b.playerId);
+    }
     const given = new Map(record.commands.map((c) => [c.playerId, c.input]));
-    for (const id of given.keys()) {
-      if (!present.some((p) => p.playerId === id)) throw new Error(`RecordDeltaCoder.encode: tick ${record.tick} has a command for player ${id}, who is not in the game`);
+    // Every command must name a present player; checked before any state changes (one lookup per player).
+    let named = 0;
+    for (const p of present) if (given.has(p.playerId)) named++;
+    if (named !== given.size) {
+      const ids = new Set(present.map((p) => p.playerId));
+      const stranger = [...given.keys()].find((id) => !ids.has(id));
+      throw new Error(`RecordDeltaCoder.encode: tick ${record.tick} has a command for player ${stranger}, who is not in the game`);
     }
     // A player without a command repeats its last one (as the simulation does): coded as unchanged.
     const gameBit = this.layout.fields.length > 0;
-    for (const p of present) writeCommand(w, p, this.canonical(given.get(p.playerId) ?? p.input), gameBit);
+    for (const p of present) {
+      const c = given.get(p.playerId) ?? p.input;
+      // Without game fields a command with no game key is already canonical: compared as it is, copied when it changed.
+      writeCommand(w, p, !gameBit && !('game' in c) ? c : this.canonical(c), gameBit);
+    }
     if (this.layout.kinds.length > 0) writeGameMessages(w, record.messages ?? [], present.map((p) => p.playerId), this.layout.kinds, record.tick);
     else if ((record.messages?.length ?? 0) > 0) throw new Error(`RecordDeltaCoder.encode: tick ${record.tick} has game messages but the scenario declares none`);
     this.players = present;

@@ -23,6 +23,7 @@ export function canonicalGame(game: readonly number[] | undefined, fields: reado
 
 /** Whether two canonical game value arrays differ. */
 export function gameDiffers(a: readonly number[] | undefined, b: readonly number[] | undefined): boolean {
+  if (a === b) return false;
   const x = a ?? [];
   const y = b ?? [];
   return x.length !== y.length || x.some((v, i) => v !== y[i]);
