@@ -302,13 +302,13 @@ export class ClientSession implements MemberSink, ResumeHolder {
   }
 
   /** One framed message from the room for this client (MemberSink). */
-  deliver(bytes: Uint8Array, kind: DeliveryKind): void {
+  deliver(bytes: Uint8Array, kind: DeliveryKind, knownTick?: number): void {
     if (this.state !== 'joined') return;
     const size = this.sendEncoded(bytes);
     if (kind === DeliveryKind.Snapshot && size > 0) {
       this.stats.snapshotsSent++;
       this.stats.snapshotBytes += size;
-      const tick = snapshotTick(bytes, this.link.lastSnapshotTick);
+      const tick = knownTick ?? snapshotTick(bytes, this.link.lastSnapshotTick);
       if (tick !== null) this.link.snapshotSent(tick, this.ctx.clock.nowMs());
     }
   }

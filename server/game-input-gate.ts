@@ -6,6 +6,8 @@ import type { InputCommand } from '../shared/sim/input.ts';
 
 /** The message's commands fitted to `fields` (and how many were clamped into range), or why they were refused. */
 export function fitInputMessage(msg: InputMessage, fields: readonly GameInputField[]): { ok: true; commands: InputCommand[]; clamped: number } | { ok: false; error: string } {
+  // The common case, a scenario without game input and commands without game values, fits as it is: nothing to copy.
+  if (fields.length === 0 && msg.commands.every((c) => c.game === undefined || c.game.length === 0)) return { ok: true, commands: msg.commands, clamped: 0 };
   const commands: InputCommand[] = [];
   let clamped = 0;
   for (let i = 0; i < msg.commands.length; i++) {

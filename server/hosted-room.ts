@@ -11,8 +11,8 @@ export type DeliveryKind = (typeof DeliveryKind)[keyof typeof DeliveryKind];
 
 /** Where a room sends one member's bytes (the client session implements it on the main thread). */
 export interface MemberSink {
-  /** One framed server message for the member's socket. */
-  deliver(bytes: Uint8Array, kind: DeliveryKind): void;
+  /** One framed server message for the member's socket; a snapshot comes with its tick where the caller knows it. */
+  deliver(bytes: Uint8Array, kind: DeliveryKind, snapshotTick?: number): void;
   /** A snapshot was not sent because the member's socket is backed up. */
   snapshotSkipped(): void;
   /** Whether the member's socket is backed up (snapshots are skipped while it is). */

@@ -111,7 +111,7 @@ export class DeliveringMember implements RoomMember {
     }
     const { message, encoded, stateVersion } = this.fanOut.snapshotFor(encoder, frame, this.heldStateVersion);
     this.heldStateVersion = stateVersion;
-    this.sink.deliver(message, DeliveryKind.Snapshot);
+    this.sink.deliver(message, DeliveryKind.Snapshot, frame.tick);
     this.metrics.snapshotBytes.observe(message.length);
     this.metrics.snapshotsSent.inc({ kind: encoded.baselineTick === null ? 'full' : 'delta' });
   }

@@ -221,6 +221,15 @@ export class CharacterController {
     return { x: p.GetX(), y: p.GetY(), z: p.GetZ() };
   }
 
+  /** Copies the feet position (m) into `out` and returns it: no object made (read for every character every tick). */
+  positionInto(out: Vec3Like): Vec3Like {
+    const p = this.live().GetPosition(); // reused temporary
+    out.x = p.GetX();
+    out.y = p.GetY();
+    out.z = p.GetZ();
+    return out;
+  }
+
   /** Teleports the character (feet position); velocity is kept. */
   setPosition(pos: Vec3Like): void {
     const ch = this.live();
@@ -250,6 +259,15 @@ export class CharacterController {
   get groundVelocity(): Vec3Like {
     const v = this.live().GetGroundVelocity(); // reused temporary
     return { x: v.GetX(), y: v.GetY(), z: v.GetZ() };
+  }
+
+  /** Copies the ground's velocity (m/s, zero in the air) into `out` and returns it: no object made. */
+  groundVelocityInto(out: Vec3Like): Vec3Like {
+    const v = this.live().GetGroundVelocity(); // reused temporary
+    out.x = v.GetX();
+    out.y = v.GetY();
+    out.z = v.GetZ();
+    return out;
   }
 
   /** Whether a jump is queued for the next move(). */

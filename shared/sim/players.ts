@@ -193,6 +193,9 @@ export function newPlayer(playerId: number, name: string, joinIndex: number, con
   return { playerId, name, joinIndex, controller, bodyId: controller.body!.id, input: { ...NEUTRAL_INPUT }, nextFireTick: 0 };
 }
 
+/** Where applyCommand reads the ground's velocity (plain numbers, used at once). */
+const groundScratch: Vec3Like = { x: 0, y: 0, z: 0 };
+
 /**
  * Applies a command to a player's character: horizontal velocity from the move axes (plus the ground's velocity
  * when standing on walkable ground), a jump when Jump is held on walkable ground. Returns the aim direction when the player fires this tick (Fire held, cooldown over), else null.
@@ -203,7 +206,7 @@ export function applyCommand(p: Player, cmd: InputCommand, rules: ResolvedPlayer
   const v = walkVelocity(cmd, rules.walkSpeedMetresPerSecond, (cmd.buttons & Button.Sprint) !== 0);
   // On walkable ground the character also rides what it stands on (moving platforms, drifting crates).
   const grounded = c.isGrounded;
-  const ground = grounded ? c.groundVelocity : null;
+  const ground = grounded ? c.groundVelocityInto(groundScratch) : null;
   c.velocity.x = ground ? v.x + ground.x : v.x;
   c.velocity.z = ground ? v.z + ground.z : v.z;
   if ((cmd.buttons & Button.Jump) !== 0 && grounded && !c.jumpPending) c.jump(rules.jumpSpeedMetresPerSecond);

@@ -58,6 +58,7 @@ function expireAndBound(core: SimCore, tick: number): void {
     core.tickEvents.push({ type: 'bodyRemoved', tick, bodyId: b.bodyId });
   }
   const { min, max } = core.def.bounds;
+  const feet = { x: 0, y: 0, z: 0 };
   for (const id of core.world.awakeBodiesOutside(min, max)) {
     const rec = core.registry.get(id)!;
     if (rec.kind === 'character') continue; // checked below, asleep or not
@@ -66,7 +67,7 @@ function expireAndBound(core: SimCore, tick: number): void {
     core.tickEvents.push({ type: 'bodyRemoved', tick, bodyId: id });
   }
   for (const p of core.players.inOrder()) {
-    const { x, y, z } = p.controller.position;
+    const { x, y, z } = p.controller.positionInto(feet);
     if (x >= min.x && x <= max.x && y >= min.y && y <= max.y && z >= min.z && z <= max.z) continue;
     p.controller.setPosition(checkSpawnPoint(core, p.joinIndex));
     p.controller.velocity.x = 0;
