@@ -6,7 +6,8 @@
 // messages, delivering events and snapshots: CPU time of each call). Sockets are not in it (per-client-writes.ts).
 // With --against DIR (a checkout of another commit, e.g. `git archive main | tar -x -C DIR`, node_modules linked), DIR's
 // rigs run beside these, a tick of each in turn, so before/after share the machine's load tick by tick.
-// Run: node_modules/.bin/node bench/per-client-cost.ts [--clients 16,96] [--rounds 3] [--ticks 300] [--against DIR]
+// --scene crowd-arena measures the crowd scene (one spawn point per player) instead of shape-rain 300.
+// Run: node_modules/.bin/node bench/per-client-cost.ts [--clients 16,96] [--rounds 3] [--ticks 300] [--scene crowd-arena] [--against DIR]
 import { loadavg } from 'node:os';
 import { join, resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
@@ -23,6 +24,10 @@ const rounds = Number(flag('rounds') ?? 3);
 const ticks = Number(flag('ticks') ?? 300);
 const warmTicks = Number(flag('warm') ?? 240);
 const againstDir = flag('against');
+const SCENES = { 'shape-rain': { scenario: 'shape-rain', params: { count: 300 }, label: 'shape-rain 300' }, 'crowd-arena': { scenario: 'crowd-arena', params: {}, label: 'crowd-arena' } } as const;
+const sceneName = flag('scene') ?? 'shape-rain';
+if (!(sceneName in SCENES)) throw new Error(`--scene takes ${Object.keys(SCENES).join(' or ')}, got ${sceneName}`);
+const scene = SCENES[sceneName as keyof typeof SCENES];
 if (counts.length !== 2 || !counts.every((n) => Number.isInteger(n) && n > 0) || counts[0] >= counts[1]) throw new Error('--clients takes two counts, low,high');
 
 interface Side {
@@ -53,7 +58,7 @@ async function runAll(sides: readonly Side[]): Promise<Map<string, Run[]>> {
   try {
     for (const side of sides) {
       for (const clients of counts) {
-        const rig = await side.rig.startServerRig({ scenario: 'shape-rain', params: { count: 300 }, startBytes: null, clients, snapshotRateHz: 30, oneWayTicks: 2, hashEveryTicks: 60 });
+        const rig = await side.rig.startServerRig({ scenario: scene.scenario, params: scene.params, startBytes: null, clients, snapshotRateHz: 30, oneWayTicks: 2, hashEveryTicks: 60 });
         rigs.push({ side, clients, rig, cpuUs: 0, networkUs: 0, received: 0 });
       }
     }
@@ -132,4 +137,4 @@ const summary = sides.map((s) => {
     messagesPerClientPerTick: round(at(hi, 'messagesPerClientPerTick'), 3),
   };
 });
-console.log(JSON.stringify({ scene: 'shape-rain 300', snapshotRateHz: 30, clients: counts, rounds, ticks, loadAtStart: round(load0, 1), loadAtEnd: round(loadavg()[0], 1), summary }, null, 2));
+console.log(JSON.stringify({ scene: scene.label, snapshotRateHz: 30, clients: counts, rounds, ticks, loadAtStart: round(load0, 1), loadAtEnd: round(loadavg()[0], 1), summary }, null, 2));

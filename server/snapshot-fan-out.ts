@@ -16,6 +16,14 @@ import type { GameStateValue } from '../shared/sim/game-state.ts';
 import type { BodyDescriptor, SimEvent } from '../shared/sim/types.ts';
 import type { WorldFrame } from './room.ts';
 
+/**
+ * A message many members get, as a Buffer over the same bytes: the socket layer (ws) takes a Buffer as it is, where it
+ * would wrap a plain Uint8Array in a new Buffer for every member it is sent to.
+ */
+function sharedBytes(bytes: Uint8Array): Uint8Array {
+  return Buffer.from(bytes.buffer, bytes.byteOffset, bytes.byteLength);
+}
+
 /** What the fan-out needs to know of its room. */
 export interface FanOutSource {
   /** Where the room's bodies live: the snapshot position grid. */
@@ -73,7 +81,7 @@ export class SnapshotFanOut {
 
   /** The framed events message of a tick: the room hands every member the same list, framed once. */
   eventsMessage(events: readonly SimEvent[]): Uint8Array {
-    if (this.events?.list !== events) this.events = { list: events, message: encodeServerMessage({ type: 'events', events: [...events] }) };
+    if (this.events?.list !== events) this.events = { list: events, message: sharedBytes(encodeServerMessage({ type: 'events', events: [...events] })) };
     return this.events.message;
   }
 
@@ -98,7 +106,7 @@ export class SnapshotFanOut {
     let message = plainKey === null ? work.messages.get(key) : work.plain.get(plainKey);
     if (!message) {
       const state = withState ? this.stateValues(stateVersion) : undefined;
-      message = encodeServerMessage({ type: 'snapshot', bytes: encoded.bytes, descriptors: encoded.descriptors, ...(state ? { state } : {}) });
+      message = sharedBytes(encodeServerMessage({ type: 'snapshot', bytes: encoded.bytes, descriptors: encoded.descriptors, ...(state ? { state } : {}) }));
       if (plainKey === null) work.messages.set(key, message);
       else work.plain.set(plainKey, message);
     }
