@@ -78,6 +78,10 @@ export class DeliveringMember implements RoomMember {
     else this.delivery = NetMode.Predict;
   }
 
+  takesRecords(): boolean {
+    return this.delivery === NetMode.Predict;
+  }
+
   deliverRecord(tick: number, message: Uint8Array): void {
     if (this.delivery !== NetMode.Predict || this.sink.tooFarBehind()) return;
     const cp = this.checkpoint;

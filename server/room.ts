@@ -365,7 +365,7 @@ export class Room implements HostedRoom {
       this.tickClock.stop();
       this.paceMeter.paused();
     }
-    const send = this.deliver(tick, events, this.predictFeed?.frame(record) ?? null);
+    const send = this.deliver(tick, events, this.recordMessage(record));
     if (this.opts.recorder?.release) this.opts.recorder.release(tick, send);
     else send();
     for (const fn of this.tickListeners) fn(record, events);
@@ -377,6 +377,18 @@ export class Room implements HostedRoom {
     m.tickDuration.observe(seconds);
     this.tickTimes.record(seconds * 1000);
     if (seconds > 1 / TICK_RATE_HZ) m.tickOverruns.inc();
+  }
+
+  /** Predict mode: the framed record of the tick just stepped, or null (and the coder stepped past it) when no member takes records. */
+  private recordMessage(record: TickInputRecord): Uint8Array | null {
+    const feed = this.predictFeed;
+    if (feed === null) return null;
+    for (const p of this.players.connected()) {
+      const m = p.member;
+      if (m.deliverRecord && (m.takesRecords?.() ?? true)) return feed.frame(record);
+    }
+    feed.skip(record);
+    return null;
   }
 
   /** Does the tick's bookkeeping now and returns what sends its events and frame (possibly later, see release). */
