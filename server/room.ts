@@ -27,6 +27,9 @@ import type { RoomCarry } from './room-carry.ts';
 export type { BodyStates, RoomMember, RoomRecorder, RoomSimulation, WorldFrame } from './room-contracts.ts';
 export { heldInput, RoomError, type JoinResult, type RoomInfo, type RoomOptions } from './room-options.ts';
 
+/** Whether a member takes predict-mode records now (a member without takesRecords does whenever it has deliverRecord). */
+const takesRecords = (p: ConnectedPlayer): boolean => p.member.deliverRecord !== undefined && (p.member.takesRecords?.() ?? true);
+
 /** A running room; build it with `new Room(sim, opts)` and call start(). */
 export class Room implements HostedRoom {
   readonly id: string;
@@ -383,10 +386,7 @@ export class Room implements HostedRoom {
   private recordMessage(record: TickInputRecord): Uint8Array | null {
     const feed = this.predictFeed;
     if (feed === null) return null;
-    for (const p of this.players.connected()) {
-      const m = p.member;
-      if (m.deliverRecord && (m.takesRecords?.() ?? true)) return feed.frame(record);
-    }
+    if (this.players.someConnected(takesRecords)) return feed.frame(record);
     feed.skip(record);
     return null;
   }
