@@ -7,7 +7,8 @@
 // from the server's own room list (pace: ticks, tick p99s, longest gap between tick starts) and their GC pauses from
 // the workers' status reports.
 // Investigation aids (bench/rooms-probe.ts): BENCH_DUMP=FILE writes every main-thread room tick of a window (start,
-// lateness, wall, CPU) and each GC pause with its kind; BENCH_HEAP_PROF=FILE samples the window's allocations.
+// lateness, wall, CPU) and each GC pause with its kind; BENCH_HEAP_PROF=FILE samples the window's allocations (with
+// BENCH_HEAP_PROF_LIVE=1 only those still alive at its end).
 // Run: node bench/procs/bench-server.ts SCENARIO PARAMS_JSON SNAPSHOT_HZ MAX_CLIENTS [ROOM_WORKERS]
 import { constants, PerformanceObserver } from 'node:perf_hooks';
 import { createInterface } from 'node:readline';
@@ -251,7 +252,7 @@ lines.on('line', (line) => {
         pauses.length = 0;
         kinds.length = 0;
         ticksAtMark = new Map(server.game.rooms.list().map((r) => [r.id, r.tick]));
-        if (process.env.BENCH_HEAP_PROF) await heapSampling('HeapProfiler.startSampling', { samplingInterval: 4096, includeObjectsCollectedByMajorGC: true, includeObjectsCollectedByMinorGC: true });
+        if (process.env.BENCH_HEAP_PROF) await heapSampling('HeapProfiler.startSampling', { samplingInterval: 4096, includeObjectsCollectedByMajorGC: !process.env.BENCH_HEAP_PROF_LIVE, includeObjectsCollectedByMinorGC: !process.env.BENCH_HEAP_PROF_LIVE });
         mark = { atMs: performance.now(), cpu: process.cpuUsage(), mainCpu: process.threadCpuUsage(), ...(await counters()) };
         say({ marked: true });
       } else if (cmd === 'report') say({ report: await report() });
