@@ -12,7 +12,7 @@ export interface FeedSimulation {
   saveCheckpointBytes(): Uint8Array;
 }
 
-/** One room's predict-mode feed; the room calls frame() after each step and checkpoint() between ticks. */
+/** One room's predict-mode feed; the room calls frame() (or skip() when no member takes records) after each step and checkpoint() between ticks. */
 export class PredictFeed {
   private readonly coder: RecordDeltaCoder;
   private readonly sim: FeedSimulation;
@@ -39,15 +39,16 @@ export class PredictFeed {
     return this.coder.state();
   }
 
-  /**
-   * Advances the record coder past the record just stepped (the simulation is now after it) and returns its framed
-   * message, or null when `framed` is false: no member takes records this tick, so neither hash nor message is made.
-   */
-  frame(record: TickInputRecord, framed = true): Uint8Array | null {
+  /** The framed record message of the record just stepped (the simulation is now after it). */
+  frame(record: TickInputRecord): Uint8Array {
     const { bits, joins } = this.coder.encode(record);
-    if (!framed) return null;
     const hash = carriesHash(record.tick) ? this.sim.stateHash() : null;
     return encodeServerMessage({ type: 'record', tickLow: record.tick & 0xff, bits, joins, hash });
+  }
+
+  /** Steps the record coder past a record nobody takes (no member streams records): no bits, no hash, no message. */
+  skip(record: TickInputRecord): void {
+    this.coder.advance(record);
   }
 
   /** The framed checkpoint of the room now (between ticks), shared by every member asking within the same tick. */

@@ -85,6 +85,6 @@ export interface RoomMember {
   removed(reason: string): void;
   /** Predict mode: the framed confirmed record of `tick` (every tick, in order). */
   deliverRecord?(tick: number, message: Uint8Array): void;
-  /** Predict mode: whether the member takes records now (absent: whenever it has deliverRecord). */
+  /** Whether the member takes records now (streams them or waits for its checkpoint); absent: whenever it has deliverRecord. */
   takesRecords?(): boolean;
 }

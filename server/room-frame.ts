@@ -9,16 +9,17 @@ import type { BodyStates, RoomSimulation, WorldFrame } from './room-contracts.ts
  * after its tick (a durable recording holds it back), to capture the descriptors of its other bodies as of now.
  */
 export function captureFrame(tick: number, bodies: BodyStates, sim: RoomSimulation, isSceneStatic: ((id: number) => boolean) | null): WorldFrame {
-  const frame: WorldFrame = {
-    tick,
-    bodies: {
-      count: bodies.count,
-      ids: bodies.ids.slice(0, bodies.count),
-      states: bodies.states.slice(0, bodies.count * BODY_STATE_STRIDE),
-      flags: bodies.flags.slice(0, bodies.count),
-    },
-    characters: sim.characters(),
-  };
+  // One buffer for the three arrays: each ArrayBuffer costs the scavenger a sweep entry beside its bytes.
+  const count = bodies.count;
+  const stateFloats = count * BODY_STATE_STRIDE;
+  const buffer = new ArrayBuffer(stateFloats * 4 + count * 4 + count);
+  const states = new Float32Array(buffer, 0, stateFloats);
+  const ids = new Uint32Array(buffer, stateFloats * 4, count);
+  const flags = new Uint8Array(buffer, stateFloats * 4 + count * 4, count);
+  states.set(bodies.states.subarray(0, stateFloats));
+  ids.set(bodies.ids.subarray(0, count));
+  flags.set(bodies.flags.subarray(0, count));
+  const frame: WorldFrame = { tick, bodies: { count, ids, states, flags }, characters: sim.characters() };
   if (isSceneStatic) frame.descriptors = captureDescriptors(frame.bodies, sim, isSceneStatic);
   return frame;
 }

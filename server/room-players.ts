@@ -97,7 +97,7 @@ export class RoomPlayers {
     this.pendingLeaves = [];
     const joins: TickInputRecord['joins'] = [];
     const commands: TickInputRecord['commands'] = [];
-    for (const p of [...this.byId.values()].sort((a, b) => a.playerId - b.playerId)) {
+    for (const p of this.ascending()) {
       if (!p.inWorld) {
         joins.push({ playerId: p.playerId, name: p.name });
         continue;
@@ -109,21 +109,28 @@ export class RoomPlayers {
     return { leaves, joins, commands };
   }
 
+  /** The players in ascending id: the map's own order (ids are handed out rising), sorted only when it is not. */
+  private ascending(): Iterable<RoomPlayer> {
+    let last = -1;
+    for (const id of this.byId.keys()) {
+      if (id < last) return [...this.byId.values()].sort((a, b) => a.playerId - b.playerId);
+      last = id;
+    }
+    return this.byId.values();
+  }
+
+  /** Whether any seat with a connected member passes `test` (no list made). */
+  someConnected(test: (p: ConnectedPlayer) => boolean): boolean {
+    for (const p of this.byId.values()) if (p.member !== null && test(p as ConnectedPlayer)) return true;
+    return false;
+  }
+
   /** The record's joins were stepped: those players are in the world. */
   joined(joins: TickInputRecord['joins']): void {
     for (const j of joins) {
       const p = this.byId.get(j.playerId);
       if (p) p.inWorld = true;
     }
-  }
-
-  /** Whether a connected member takes predict-mode records (no array made: asked every tick). */
-  anyTakesRecords(): boolean {
-    for (const p of this.byId.values()) {
-      const m = p.member;
-      if (m !== null && m.deliverRecord !== undefined && (m.takesRecords?.() ?? true)) return true;
-    }
-    return false;
   }
 
   /** Seats whose member is connected, in seating order. */

@@ -27,6 +27,9 @@ import type { RoomCarry } from './room-carry.ts';
 export type { BodyStates, RoomMember, RoomRecorder, RoomSimulation, WorldFrame } from './room-contracts.ts';
 export { heldInput, RoomError, type JoinResult, type RoomInfo, type RoomOptions } from './room-options.ts';
 
+/** Whether a member takes predict-mode records now (a member without takesRecords does whenever it has deliverRecord). */
+const takesRecords = (p: ConnectedPlayer): boolean => p.member.deliverRecord !== undefined && (p.member.takesRecords?.() ?? true);
+
 /** A running room; build it with `new Room(sim, opts)` and call start(). */
 export class Room implements HostedRoom {
   readonly id: string;
@@ -365,8 +368,7 @@ export class Room implements HostedRoom {
       this.tickClock.stop();
       this.paceMeter.paused();
     }
-    // A member that turns to predict mode later starts from a checkpoint after this tick: it never needs this record.
-    const send = this.deliver(tick, events, this.predictFeed?.frame(record, this.players.anyTakesRecords()) ?? null);
+    const send = this.deliver(tick, events, this.recordMessage(record));
     if (this.opts.recorder?.release) this.opts.recorder.release(tick, send);
     else send();
     for (const fn of this.tickListeners) fn(record, events);
@@ -378,6 +380,15 @@ export class Room implements HostedRoom {
     m.tickDuration.observe(seconds);
     this.tickTimes.record(seconds * 1000);
     if (seconds > 1 / TICK_RATE_HZ) m.tickOverruns.inc();
+  }
+
+  /** Predict mode: the framed record of the tick just stepped, or null (and the coder stepped past it) when no member takes records. */
+  private recordMessage(record: TickInputRecord): Uint8Array | null {
+    const feed = this.predictFeed;
+    if (feed === null) return null;
+    if (this.players.someConnected(takesRecords)) return feed.frame(record);
+    feed.skip(record);
+    return null;
   }
 
   /** Does the tick's bookkeeping now and returns what sends its events and frame (possibly later, see release). */

@@ -3,6 +3,7 @@
 import './physics-node.ts';
 import type { IncomingMessage, ServerResponse } from 'node:http';
 import type { AddressInfo } from 'node:net';
+import { DEFAULT_HEAP_GROWING_PERCENT, setHeapGrowingPercent } from './heap-growth.ts';
 import type { NetModeRequest } from './net-mode-policy.ts';
 import { createSecureContext } from 'node:tls';
 import { join } from 'node:path';
@@ -104,6 +105,11 @@ export interface StartServerOptions extends AccessOptions {
   workerScenarioModules?: readonly string[];
   /** Each room worker's young-generation size in MB (fewer, longer scavenges when larger). Default: V8's. */
   roomWorkerYoungGenerationMb?: number;
+  /**
+   * Old-generation headroom after a full GC, in percent of what it left alive, for the whole process (server/heap-growth.ts;
+   * 0: V8's own rule). Default 100: young-generation fills stay scavenges instead of becoming full collections.
+   */
+  heapGrowingPercent?: number;
   /** Join a fleet of servers through a Redis directory (docs/deploy.md). Default: a single process. */
   fleet?: FleetOptions;
   /** Run as an Agones GameServer through the SDK sidecar (docs/deploy.md). Default: not. */
@@ -171,6 +177,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   const tarpit = new Tarpit(clock, opts.tarpit);
   const fleet = createFleetDirectory(opts.fleet, clock, logger);
 
+  setHeapGrowingPercent(opts.heapGrowingPercent ?? DEFAULT_HEAP_GROWING_PERCENT);
   const roomWorkers = opts.roomWorkers ?? 0;
   if (!Number.isInteger(roomWorkers) || roomWorkers < 0) throw new Error(`room workers must be a whole number ≥ 0, got ${roomWorkers}`);
   const workers =

@@ -6,6 +6,9 @@
 // prints the window as one JSON line. With ROOM_WORKERS > 0 the rooms run in worker threads and their figures come
 // from the server's own room list (pace: ticks, tick p99s, longest gap between tick starts) and their GC pauses from
 // the workers' status reports.
+// Investigation aids (bench/rooms-probe.ts): BENCH_DUMP=FILE writes every main-thread room tick of a window (start,
+// lateness, wall, CPU) and each GC pause with its kind; BENCH_HEAP_PROF=FILE samples the window's allocations (with
+// BENCH_HEAP_PROF_LIVE=1 only those still alive at its end).
 // Run: node bench/procs/bench-server.ts SCENARIO PARAMS_JSON SNAPSHOT_HZ MAX_CLIENTS [ROOM_WORKERS]
 import { constants, PerformanceObserver } from 'node:perf_hooks';
 import { createInterface } from 'node:readline';
@@ -55,6 +58,9 @@ const server = await startServer({
 interface TickLog {
   room: Room;
   startsMs: number[];
+  /** How late each tick started after it was due (ms), and this thread's CPU time (ms) when it started. */
+  lateMs: number[];
+  cpuAtStartMs: number[];
   wallMs: number[];
   cpuMs: number[];
 }
@@ -62,7 +68,7 @@ const logs: TickLog[] = [];
 
 /** Times every tick of a room: its start, its wall time and this thread's CPU time inside it. */
 function instrument(room: Room): void {
-  const log: TickLog = { room, startsMs: [], wallMs: [], cpuMs: [] };
+  const log: TickLog = { room, startsMs: [], lateMs: [], cpuAtStartMs: [], wallMs: [], cpuMs: [] };
   logs.push(log);
   const tickOnce = room.tickOnce.bind(room);
   room.tickOnce = () => {
@@ -72,6 +78,8 @@ function instrument(room: Room): void {
     const wall = performance.now() - t0;
     const cpu = process.threadCpuUsage(c0);
     log.startsMs.push(t0);
+    log.lateMs.push(t0 - (room.tickClock.nextDueMs() - room.tickClock.dtMs));
+    log.cpuAtStartMs.push((c0.user + c0.system) / 1000);
     log.wallMs.push(wall);
     log.cpuMs.push((cpu.user + cpu.system) / 1000);
   };
@@ -83,8 +91,14 @@ else if (roomWorkers === 0) throw new Error('bench-server: no default room');
 let ticksAtMark = new Map<string, number>();
 
 const pauses: GcPause[] = [];
+/** Investigation aid: with BENCH_DUMP=FILE, report() also writes every room tick and GC pause (with its kind) of the window there. */
+const kinds: number[] = [];
 const gcObserver = new PerformanceObserver((list) => {
-  for (const e of list.getEntries()) pauses.push({ startTime: e.startTime, duration: e.duration, major: (e as PerformanceEntry & { detail?: { kind?: number } }).detail?.kind === constants.NODE_PERFORMANCE_GC_MAJOR });
+  for (const e of list.getEntries()) {
+    const kind = (e as PerformanceEntry & { detail?: { kind?: number } }).detail?.kind;
+    pauses.push({ startTime: e.startTime, duration: e.duration, major: kind === constants.NODE_PERFORMANCE_GC_MAJOR });
+    kinds.push(kind ?? -1);
+  }
 });
 gcObserver.observe({ entryTypes: ['gc'] });
 
@@ -104,6 +118,13 @@ async function counters(): Promise<Record<'sent' | 'skipped' | 'ticksSkipped' | 
 
 const summary = (xs: number[]): { p50: number; p99: number; max: number } | null =>
   xs.length === 0 ? null : { p50: round(quantile(xs, 0.5), 3), p99: round(quantile(xs, 0.99), 3), max: round(Math.max(...xs), 3) };
+
+const inspector = process.env.BENCH_HEAP_PROF ? new (await import('node:inspector')).Session() : null;
+inspector?.connect();
+/** Investigation aid: with BENCH_HEAP_PROF=FILE, the window's allocations (collected ones too) are sampled into FILE. */
+function heapSampling(method: string, params: object): Promise<unknown> {
+  return new Promise((resolve, reject) => inspector!.post(method, params, (err, res) => (err ? reject(err) : resolve(res))));
+}
 
 let mark = { atMs: performance.now(), cpu: process.cpuUsage(), mainCpu: process.threadCpuUsage(), ...(await counters()) };
 
@@ -175,6 +196,14 @@ async function report(): Promise<unknown> {
   const seconds = (endMs - mark.atMs) / 1000;
   const windowPauses = pauses.filter((p) => p.startTime >= mark.atMs && p.startTime < endMs);
   const mainGc = gcSummary(mark.atMs, endMs, windowPauses);
+  if (process.env.BENCH_HEAP_PROF) {
+    const { profile } = (await heapSampling('HeapProfiler.stopSampling', {})) as { profile: unknown };
+    (await import('node:fs')).writeFileSync(process.env.BENCH_HEAP_PROF, JSON.stringify(profile));
+  }
+  if (process.env.BENCH_DUMP) {
+    const { writeFileSync } = await import('node:fs');
+    writeFileSync(process.env.BENCH_DUMP, JSON.stringify({ fromMs: mark.atMs, toMs: endMs, cpuMs: (cpu.user + cpu.system) / 1000, gc: pauses.map((p, i) => [p.startTime, p.duration, kinds[i]]), rooms: logs.map((l) => ({ id: l.room.id, starts: l.startsMs, late: l.lateMs, cpuAt: l.cpuAtStartMs, wall: l.wallMs, cpu: l.cpuMs })) }));
+  }
   return {
     seconds,
     cpuMs: (cpu.user + cpu.system) / 1000,
@@ -215,11 +244,15 @@ lines.on('line', (line) => {
       else if (cmd === 'mark') {
         for (const l of logs) {
           l.startsMs = [];
+          l.lateMs = [];
+          l.cpuAtStartMs = [];
           l.wallMs = [];
           l.cpuMs = [];
         }
         pauses.length = 0;
+        kinds.length = 0;
         ticksAtMark = new Map(server.game.rooms.list().map((r) => [r.id, r.tick]));
+        if (process.env.BENCH_HEAP_PROF) await heapSampling('HeapProfiler.startSampling', { samplingInterval: 4096, includeObjectsCollectedByMajorGC: !process.env.BENCH_HEAP_PROF_LIVE, includeObjectsCollectedByMinorGC: !process.env.BENCH_HEAP_PROF_LIVE });
         mark = { atMs: performance.now(), cpu: process.cpuUsage(), mainCpu: process.threadCpuUsage(), ...(await counters()) };
         say({ marked: true });
       } else if (cmd === 'report') say({ report: await report() });

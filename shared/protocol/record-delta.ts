@@ -82,34 +82,54 @@ export class RecordDeltaCoder {
   /** Encodes the next record (a valid record: e.g. the one the room stepped) and advances the state. */
   encode(record: TickInputRecord): { bits: Uint8Array; joins: PlayerJoin[] } {
     const w = new BitWriter(32);
+    this.write(w, record);
+    return { bits: w.finish(), joins: record.joins.map((j) => ({ playerId: j.playerId, name: j.name })) };
+  }
+
+  /**
+   * Advances the state past a record exactly as encode() would, without making its bits (a room whose members take
+   * no records yet keeps its coder current for the checkpoint a predicting member starts from).
+   */
+  advance(record: TickInputRecord): void {
+    this.write(DISCARD, record);
+  }
+
+  private write(w: BitWriter, record: TickInputRecord): void {
     w.writeExpGolomb(record.leaves.length, 0);
     for (const id of record.leaves) w.writeBits(id, 32);
-    // Most ticks neither add nor remove anyone: the players stay as they are (ascending id), no copy made.
-    let present = this.players;
-    if (record.leaves.length > 0 || record.joins.length > 0) {
-      const leaving = new Set(record.leaves);
-      present = this.players.filter((p) => !leaving.has(p.playerId)).concat(record.joins.map((j) => this.joined(j))).sort((a, b) => a.playerId - b.playerId);
-    }
-    const given = new Map(record.commands.map((c) => [c.playerId, c.input]));
-    // Every command must name a present player; checked before any state changes (one lookup per player).
-    let named = 0;
-    for (const p of present) if (given.has(p.playerId)) named++;
-    if (named !== given.size) {
-      const ids = new Set(present.map((p) => p.playerId));
-      const stranger = [...given.keys()].find((id) => !ids.has(id));
-      throw new Error(`RecordDeltaCoder.encode: tick ${record.tick} has a command for player ${stranger}, who is not in the game`);
-    }
-    // A player without a command repeats its last one (as the simulation does): coded as unchanged.
+    // Most ticks nobody leaves or joins: the players stay as they are (already ascending).
+    const present = record.leaves.length === 0 && record.joins.length === 0 ? this.players : this.membersAfter(record);
     const gameBit = this.layout.fields.length > 0;
+    // A player without a command repeats its last one (as the simulation does): coded as unchanged. Commands come in
+    // ascending player id (a room's records do): matched in one walk, else through a map.
+    const commands = record.commands;
+    let c = 0;
+    let ascending = true;
+    for (let i = 1; i < commands.length && ascending; i++) ascending = commands[i - 1].playerId < commands[i].playerId;
+    const given = ascending ? null : new Map(commands.map((x) => [x.playerId, x.input]));
+    // Every command must name a present player; checked before any state changes.
+    if (given) {
+      for (const id of given.keys()) if (!present.some((p) => p.playerId === id)) throw notInGame(record.tick, id);
+    } else {
+      for (const p of present) if (c < commands.length && commands[c].playerId === p.playerId) c++;
+      if (c < commands.length) throw notInGame(record.tick, commands.find((x) => !present.some((p) => p.playerId === x.playerId))!.playerId);
+      c = 0;
+    }
     for (const p of present) {
-      const c = given.get(p.playerId) ?? p.input;
-      // Without game fields a command with no game key is already canonical: compared as it is, copied when it changed.
-      writeCommand(w, p, !gameBit && !('game' in c) ? c : this.canonical(c), gameBit);
+      let input = p.input;
+      if (given) input = given.get(p.playerId) ?? input;
+      else if (c < commands.length && commands[c].playerId === p.playerId) input = commands[c++].input;
+      writeCommand(w, p, this.canonical(input), gameBit);
     }
     if (this.layout.kinds.length > 0) writeGameMessages(w, record.messages ?? [], present.map((p) => p.playerId), this.layout.kinds, record.tick);
     else if ((record.messages?.length ?? 0) > 0) throw new Error(`RecordDeltaCoder.encode: tick ${record.tick} has game messages but the scenario declares none`);
     this.players = present;
-    return { bits: w.finish(), joins: record.joins.map((j) => ({ playerId: j.playerId, name: j.name })) };
+  }
+
+  /** The players after a record's leaves and joins, ascending id. */
+  private membersAfter(record: TickInputRecord): PlayerInputState[] {
+    const leaving = new Set(record.leaves);
+    return this.players.filter((p) => !leaving.has(p.playerId)).concat(record.joins.map((j) => this.joined(j))).sort((a, b) => a.playerId - b.playerId);
   }
 
   /** Decodes the record of `tick` and advances the state; throws a clear Error (state unchanged) on bad data. */
@@ -144,6 +164,7 @@ export class RecordDeltaCoder {
 
   /** A command in record form: game values present exactly when the scenario declares fields (absent ones 0). */
   private canonical(c: InputCommand): InputCommand {
+    if (this.layout.fields.length === 0 && !('game' in c)) return c; // already in record form: no copy
     const game = canonicalGame(c.game, this.layout.fields);
     const { game: _dropped, ...plain } = c;
     return game === undefined ? plain : { ...plain, game };
@@ -153,6 +174,20 @@ export class RecordDeltaCoder {
     return { playerId: j.playerId, input: this.canonical(NEUTRAL_INPUT), yawStep: 0 };
   }
 }
+
+function notInGame(tick: number, playerId: number): Error {
+  return new Error(`RecordDeltaCoder.encode: tick ${tick} has a command for player ${playerId}, who is not in the game`);
+}
+
+/** A writer that keeps no bits: advance() runs the very code encode() runs, state updates and checks included. */
+class DiscardingBitWriter extends BitWriter {
+  constructor() {
+    super(16);
+  }
+
+  override writeBits(): void {}
+}
+const DISCARD = new DiscardingBitWriter();
 
 function writeCommand(w: BitWriter, p: PlayerInputState, c: InputCommand, gameBit: boolean): void {
   const last = p.input;
