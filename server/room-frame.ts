@@ -13,14 +13,24 @@ export function captureFrame(tick: number, bodies: BodyStates, sim: RoomSimulati
     tick,
     bodies: {
       count: bodies.count,
-      ids: bodies.ids.slice(0, bodies.count),
-      states: bodies.states.slice(0, bodies.count * BODY_STATE_STRIDE),
-      flags: bodies.flags.slice(0, bodies.count),
+      ids: copyOf(bodies.ids, bodies.count, (n) => new Uint32Array(n)),
+      states: copyOf(bodies.states, bodies.count * BODY_STATE_STRIDE, (n) => new Float32Array(n)),
+      flags: copyOf(bodies.flags, bodies.count, (n) => new Uint8Array(n)),
     },
     characters: sim.characters(),
   };
   if (isSceneStatic) frame.descriptors = captureDescriptors(frame.bodies, sim, isSceneStatic);
   return frame;
+}
+
+/**
+ * The first `n` values of `from` in a new array. Not `from.slice(0, n)`: on a subarray (the read buffers are views) V8
+ * copies a Float32Array's slice one element at a time, ~25× slower than allocating and set() (~130 µs for 1000 bodies).
+ */
+function copyOf<T extends Uint32Array | Float32Array | Uint8Array>(from: T, n: number, make: (n: number) => T): T {
+  const out = make(n);
+  out.set(from.subarray(0, n));
+  return out;
 }
 
 function captureDescriptors(bodies: BodyStates, sim: RoomSimulation, isSceneStatic: (id: number) => boolean): Map<number, BodyDescriptor> {
