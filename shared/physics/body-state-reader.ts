@@ -82,6 +82,7 @@ export class BodyStateReader {
   private joltIndex = new Int32Array(0);
   /** Per slot: how a read that follows the world reads it (BodyReadMode; reads of every body use the getters). */
   private modes = new Uint8Array(0);
+  private readonly knownModes = new WeakMap<BodyHandle, number>();
   private states = new Float32Array(0);
   private flags = new Uint8Array(0);
   /** By Jolt body index: 1 while Jolt keeps the body active (from the activation listener). */
@@ -219,9 +220,19 @@ export class BodyStateReader {
     this.baseFlags[i] = f;
     const index = h.joltId & BODY_INDEX_MASK;
     this.joltIndex[i] = index;
-    this.modes[i] = this.memory !== null && (f & BodyFlag.Static) === 0 ? this.memory.modeFor(this.ptrs[i]) : BodyReadMode.Getters;
+    this.modes[i] = this.memory !== null && (f & BodyFlag.Static) === 0 ? this.readModeOf(h, this.memory) : BodyReadMode.Getters;
     if (this.raw) this.active.set(index, (f & BodyFlag.Static) === 0 && this.raw.active(this.ptrs[i]) ? 1 : 0);
     this.stale.set(index, 1);
+  }
+
+  /** A body's read mode, asked of Jolt once per body (its shape never changes): rebuilds after restores reuse it. */
+  private readModeOf(h: BodyHandle, memory: BodyMemory): number {
+    let mode = this.knownModes.get(h);
+    if (mode === undefined) {
+      mode = memory.modeFor(this.J.getPointer(h.raw));
+      this.knownModes.set(h, mode);
+    }
+    return mode;
   }
 
   private rebuild(sortedIds: readonly number[], records: ReadonlyMap<number, BodyHandle>): void {
