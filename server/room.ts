@@ -401,7 +401,7 @@ export class Room implements HostedRoom {
       this.snapshotAccumulator -= TICK_RATE_HZ;
       const bodies = this.sim.readBodyStates();
       this.lastBodyCount = bodies.count;
-      if (this.heldCount < this.players.size) frame = captureFrame(tick, bodies, this.sim, this.opts.recorder?.release ? (id) => this.isSceneStatic(id) : null);
+      if (this.heldCount < this.players.size) frame = captureFrame(tick, bodies, this.sim, this.opts.recorder?.release ? (id) => this.isSceneStatic(id) : null, this.snapshots.takeSpareBodies());
     }
     return () => {
       if (this.closed) return;

@@ -68,6 +68,8 @@ export class SnapshotFanOut {
   private last: { bodies: WorldFrame['bodies']; frame: QuantizedFrame } | null = null;
   private events: { list: readonly SimEvent[]; message: Uint8Array } | null = null;
   private state: { version: number; values: GameStateValue[] } | null = null;
+  /** Body copies of a frame that was quantized and then followed by a newer one: free for the next frame's copy. */
+  private spare: WorldFrame['bodies'] | null = null;
 
   constructor(source: FanOutSource) {
     this.source = source;
@@ -77,6 +79,16 @@ export class SnapshotFanOut {
   get format(): SnapshotFormat {
     this.formatCache ??= createSnapshotFormat(this.source.bounds);
     return this.formatCache;
+  }
+
+  /**
+   * Body arrays of an earlier frame that nothing reads any more (its quantized form replaced it), handed out once:
+   * captureFrame copies the next frame into them instead of allocating. Null when there are none.
+   */
+  takeSpareBodies(): WorldFrame['bodies'] | null {
+    const spare = this.spare;
+    this.spare = null;
+    return spare;
   }
 
   /** The framed events message of a tick: the room hands every member the same list, framed once. */
@@ -123,6 +135,8 @@ export class SnapshotFanOut {
     const last = this.last;
     const previous = last !== null && last.frame.tick < frame.tick ? { read: last.bodies, frame: last.frame } : undefined;
     const quantized = quantizeFrame(this.format, frame.tick, frame.bodies, frame.characters, { includeStatic: (id) => !this.source.isSceneStatic(id), previous });
+    // The previous frame's body copies are read by nothing once this frame is quantized: the room copies into them next.
+    if (last !== null && last.bodies !== frame.bodies) this.spare = last.bodies;
     this.last = { bodies: frame.bodies, frame: quantized };
     this.work = { frame, quantized, shared: new SharedFrameWork(), stateVersion: this.source.gameStateVersion?.() ?? null, plain: new Map(), messages: new Map() };
     return this.work;

@@ -5,6 +5,7 @@
 import { BodyFlag, BODY_STATE_STRIDE } from '../physics-data/body-state.ts';
 import type { Vec3Like } from '../physics-data/vectors.ts';
 import type { BodyHandle } from './body-handle.ts';
+import { BODY_COM_POSITION_WORD, BODY_MOTION_PROPERTIES_WORD, BODY_ROTATION_WORD, BodyMemory, BodyReadMode, MOTION_ANGULAR_VELOCITY_WORD, MOTION_LINEAR_VELOCITY_WORD } from './body-memory.ts';
 import type { JoltModule } from './jolt-backend.ts';
 
 type RawGetter = (bodyPtr: number) => number;
@@ -65,6 +66,8 @@ class IndexBytes {
 export class BodyStateReader {
   private readonly J: JoltModule;
   private readonly raw: RawGetters | undefined;
+  /** Direct heap reads of moving bodies (null: this build lacks what checks them; every read uses the getters). */
+  private readonly memory: BodyMemory | null;
   /** Read every body on each read (a reference for tests; always without raw getters or a system to follow). */
   everyBody: boolean;
   private dirty = true;
@@ -77,6 +80,9 @@ export class BodyStateReader {
   private baseFlags = new Uint8Array(0);
   /** Per slot: the Jolt body index (into `active` and `stale`). */
   private joltIndex = new Int32Array(0);
+  /** Per slot: how a read that follows the world reads it (BodyReadMode; reads of every body use the getters). */
+  private modes = new Uint8Array(0);
+  private readonly knownModes = new WeakMap<BodyHandle, number>();
   private states = new Float32Array(0);
   private flags = new Uint8Array(0);
   /** By Jolt body index: 1 while Jolt keeps the body active (from the activation listener). */
@@ -90,6 +96,7 @@ export class BodyStateReader {
   constructor(J: JoltModule, system?: InstanceType<JoltModule['PhysicsSystem']>) {
     this.J = J;
     this.raw = rawGetters(J);
+    this.memory = this.raw === undefined || system === undefined ? null : BodyMemory.of(J);
     this.everyBody = this.raw === undefined || system === undefined;
     if (this.raw === undefined || system === undefined) {
       this.listener = null;
@@ -151,6 +158,7 @@ export class BodyStateReader {
       this.ids.copyWithin(i + 1, i, n);
       this.baseFlags.copyWithin(i + 1, i, n);
       this.joltIndex.copyWithin(i + 1, i, n);
+      this.modes.copyWithin(i + 1, i, n);
       this.flags.copyWithin(i + 1, i, n);
       this.states.copyWithin((i + 1) * BODY_STATE_STRIDE, i * BODY_STATE_STRIDE, n * BODY_STATE_STRIDE);
       this.handles.splice(i, 0, h);
@@ -177,6 +185,7 @@ export class BodyStateReader {
     this.ids.copyWithin(i, i + 1, n);
     this.baseFlags.copyWithin(i, i + 1, n);
     this.joltIndex.copyWithin(i, i + 1, n);
+    this.modes.copyWithin(i, i + 1, n);
     this.flags.copyWithin(i, i + 1, n);
     this.states.copyWithin(i * BODY_STATE_STRIDE, (i + 1) * BODY_STATE_STRIDE, n * BODY_STATE_STRIDE);
     this.handles.splice(i, 1);
@@ -196,6 +205,7 @@ export class BodyStateReader {
     this.ids = grow(this.ids, (s) => new Uint32Array(s));
     this.baseFlags = grow(this.baseFlags, (s) => new Uint8Array(s));
     this.joltIndex = grow(this.joltIndex, (s) => new Int32Array(s));
+    this.modes = grow(this.modes, (s) => new Uint8Array(s));
     this.flags = grow(this.flags, (s) => new Uint8Array(s));
     this.states = grow(this.states, (s) => new Float32Array(s), BODY_STATE_STRIDE);
   }
@@ -210,8 +220,19 @@ export class BodyStateReader {
     this.baseFlags[i] = f;
     const index = h.joltId & BODY_INDEX_MASK;
     this.joltIndex[i] = index;
+    this.modes[i] = this.memory !== null && (f & BodyFlag.Static) === 0 ? this.readModeOf(h, this.memory) : BodyReadMode.Getters;
     if (this.raw) this.active.set(index, (f & BodyFlag.Static) === 0 && this.raw.active(this.ptrs[i]) ? 1 : 0);
     this.stale.set(index, 1);
+  }
+
+  /** A body's read mode, asked of Jolt once per body (its shape never changes): rebuilds after restores reuse it. */
+  private readModeOf(h: BodyHandle, memory: BodyMemory): number {
+    let mode = this.knownModes.get(h);
+    if (mode === undefined) {
+      mode = memory.modeFor(this.J.getPointer(h.raw));
+      this.knownModes.set(h, mode);
+    }
+    return mode;
   }
 
   private rebuild(sortedIds: readonly number[], records: ReadonlyMap<number, BodyHandle>): void {
@@ -289,11 +310,22 @@ export class BodyStateReader {
     const afterStep = this.steppedSinceRead;
     this.steppedSinceRead = false;
     const heap = this.J.HEAPF32;
+    const heapU32 = this.J.HEAPU32;
     const { pos, rot, lin, ang, active } = raw;
+    const direct = !every && this.memory !== null && this.memory.enabled;
     for (let i = 0; i < n; i++) {
       if (!every && !this.mayHaveMoved(i, afterStep)) continue;
       const b = this.ptrs[i];
       const o = i * BODY_STATE_STRIDE;
+      const mode = this.modes[i];
+      if (direct && mode !== BodyReadMode.Getters) {
+        readDirect(heap, heapU32, b, mode === BodyReadMode.Direct, pos, states, o);
+        const base = this.baseFlags[i];
+        const index = this.joltIndex[i];
+        flags[i] = this.active.get(index) === 1 ? base | BodyFlag.Active : base;
+        this.stale.set(index, 0);
+        continue;
+      }
       let p = pos(b) >> 2;
       states[o] = heap[p];
       states[o + 1] = heap[p + 1];
@@ -329,6 +361,46 @@ export class BodyStateReader {
     }
     return this.result;
   }
+}
+
+/**
+ * One non-static body's 13 floats from the heap (see body-memory.ts): rotation and velocities always; the position
+ * from mPosition when `comAtOrigin` and every coordinate and rotation component allows it (finite, coordinates
+ * non-zero), else from the getter.
+ */
+function readDirect(heap: Float32Array, heapU32: Uint32Array, bodyPtr: number, comAtOrigin: boolean, pos: RawGetter, states: Float32Array, o: number): void {
+  const q = bodyPtr >> 2;
+  const r = q + BODY_ROTATION_WORD;
+  const rx = heap[r];
+  const ry = heap[r + 1];
+  const rz = heap[r + 2];
+  const rw = heap[r + 3];
+  states[o + 3] = rx;
+  states[o + 4] = ry;
+  states[o + 5] = rz;
+  states[o + 6] = rw;
+  const c = q + BODY_COM_POSITION_WORD;
+  const x = heap[c];
+  const y = heap[c + 1];
+  const z = heap[c + 2];
+  // x − x is 0 only for a finite x; NaN and ±Infinity fail every comparison below.
+  if (comAtOrigin && x !== 0 && y !== 0 && z !== 0 && x - x === 0 && y - y === 0 && z - z === 0 && rx - rx === 0 && ry - ry === 0 && rz - rz === 0 && rw - rw === 0) {
+    states[o] = x;
+    states[o + 1] = y;
+    states[o + 2] = z;
+  } else {
+    const p = pos(bodyPtr) >> 2;
+    states[o] = heap[p];
+    states[o + 1] = heap[p + 1];
+    states[o + 2] = heap[p + 2];
+  }
+  const m = heapU32[q + BODY_MOTION_PROPERTIES_WORD] >> 2;
+  states[o + 7] = heap[m + MOTION_LINEAR_VELOCITY_WORD];
+  states[o + 8] = heap[m + MOTION_LINEAR_VELOCITY_WORD + 1];
+  states[o + 9] = heap[m + MOTION_LINEAR_VELOCITY_WORD + 2];
+  states[o + 10] = heap[m + MOTION_ANGULAR_VELOCITY_WORD];
+  states[o + 11] = heap[m + MOTION_ANGULAR_VELOCITY_WORD + 1];
+  states[o + 12] = heap[m + MOTION_ANGULAR_VELOCITY_WORD + 2];
 }
 
 /** First index in ids[0, n) whose value is not below `value`. */

@@ -143,6 +143,19 @@ export function hashDump(d: StateDump): string {
 
 /** hashState's hasher, reused: the hash runs to completion before anything else can use it. */
 const streamHasher = new Hasher64();
+/** hashState's scenario values as float64s, reused (grown on demand). */
+let scenarioValues = new Float64Array(64);
+
+/**
+ * The scenario state's words (each value's float64 bits, low word first) in a reused buffer, valid until the next
+ * call: one bulk words() instead of two word() calls per value (shape-rain 1000 saves 2001 values).
+ */
+function scenarioWords(values: readonly number[]): Uint32Array {
+  const n = values.length;
+  if (scenarioValues.length < n) scenarioValues = new Float64Array(Math.max(n, scenarioValues.length * 2));
+  for (let i = 0; i < n; i++) scenarioValues[i] = values[i];
+  return new Uint32Array(scenarioValues.buffer, 0, n * 2);
+}
 
 /**
  * The state hash of a simulation core straight from its state: the very words hashDump(dumpState(core)) hashes, in
@@ -174,7 +187,7 @@ export function hashState(core: SimCore, bodies: BodyStates): string {
   for (const b of bullets) h.word(b.bodyId).word(b.ownerId).word(b.expireTick);
   const scenario = core.instance.saveState ? core.instance.saveState() : [];
   h.word(scenario.length);
-  for (const v of scenario) h.f64Bits(v); // low word, then high: as hashDump's little-endian Float64Array view
+  h.words(scenarioWords(scenario)); // low word, then high: as hashDump's little-endian Float64Array view
   const game = core.gameState.list();
   if (game.length > 0) {
     h.word(game.length);

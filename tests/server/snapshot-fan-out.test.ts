@@ -2,6 +2,8 @@
 // (baseline, descriptors) so members on the same baseline get the very same message, which decodes to the frame;
 // events framed once per tick for all members.
 import { describe, expect, it } from 'vitest';
+import type { RoomSimulation } from '../../server/room-contracts.ts';
+import { captureFrame } from '../../server/room-frame.ts';
 import type { WorldFrame } from '../../server/room.ts';
 import { SnapshotFanOut } from '../../server/snapshot-fan-out.ts';
 import { decodeServerMessage, framesEqual, quantizeFrame, SnapshotDecoder, SnapshotEncoder } from '../../shared/protocol/index.ts';
@@ -61,6 +63,33 @@ describe('SnapshotFanOut', () => {
     decoder.decode(snapshotBytes(fan.snapshotFor(new SnapshotEncoder(fan.format), first).message));
     const viaDelta = decoder.decode(snapshotBytes(delta.message)).frame;
     expect(framesEqual(viaDelta, quantizeFrame(fan.format, second.tick, second.bodies, second.characters))).toBe(true);
+  });
+
+  it('hands out the copies of a superseded frame once, and frames captured into them still decode exactly', () => {
+    const { world, fan } = setup();
+    const sim = { characters: () => world.characterStates() } as unknown as RoomSimulation;
+    const member = new SnapshotEncoder(fan.format);
+    const decoder = new SnapshotDecoder(fan.format);
+    let reused = 0;
+    let previous: WorldFrame | null = null;
+    for (let t = 0; t < 12; t++) {
+      world.step();
+      const spare = fan.takeSpareBodies();
+      if (t >= 2) expect(spare, `tick ${t}: the frame before last is free`).not.toBeNull();
+      if (spare !== null) {
+        expect(spare.ids.buffer).not.toBe(previous?.bodies.ids.buffer); // never the last frame's: the next quantize compares against it
+        reused++;
+      }
+      const r = world.read();
+      const expected = quantizeFrame(fan.format, world.tick, { count: r.count, ids: Uint32Array.from(r.ids), states: Float32Array.from(r.states), flags: Uint8Array.from(r.flags) }, world.characterStates());
+      const f = captureFrame(world.tick, { count: r.count, ids: r.ids as Uint32Array, states: r.states as Float32Array, flags: r.flags as Uint8Array }, sim, null, spare);
+      const sent = fan.snapshotFor(member, f);
+      const decoded = decoder.decode(snapshotBytes(sent.message)).frame;
+      expect(framesEqual(decoded, expected), `tick ${t}`).toBe(true);
+      if (t % 3 === 2) member.acknowledge(world.tick - 1); // an older baseline while later frames reuse its copies
+      previous = f;
+    }
+    expect(reused).toBeGreaterThanOrEqual(10);
   });
 
   it('frames the events of a tick once for every member', () => {
