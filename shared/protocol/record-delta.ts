@@ -109,7 +109,8 @@ export class RecordDeltaCoder {
     const given = ascending ? null : new Map(commands.map((x) => [x.playerId, x.input]));
     // Every command must name a present player; checked before any state changes.
     if (given) {
-      for (const id of given.keys()) if (!present.some((p) => p.playerId === id)) throw notInGame(record.tick, id);
+      const ids = new Set(present.map((p) => p.playerId));
+      for (const id of given.keys()) if (!ids.has(id)) throw notInGame(record.tick, id);
     } else {
       for (const p of present) if (c < commands.length && commands[c].playerId === p.playerId) c++;
       if (c < commands.length) throw notInGame(record.tick, commands.find((x) => !present.some((p) => p.playerId === x.playerId))!.playerId);
