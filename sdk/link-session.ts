@@ -122,6 +122,8 @@ export class LinkSession {
   private readonly acks = new AckCarrier();
   private lead: InputLead | null = null;
   private missedInputTicks: number | null = null;
+  /** The furthest tick the input clock has asked for on this link (-1: none yet). */
+  private highestClockTarget = -1;
   private roomPace: { ticksPerSecond: number; slow: boolean } | null = null;
   private bye: ServerByeMessage | null = null;
   private errorBeforeWelcome: ErrorMessage | null = null;
@@ -391,9 +393,12 @@ export class LinkSession {
 
   /**
    * `atFrame`: a frame is about to be drawn. When the move axes or buttons changed since the newest fixed tick, the
-   * next tick is fixed with them at once, up to one tick before the clock asks for it (the lead grows by at most that
-   * tick), so the frame drawn right after a key has simulated the key's tick. A look change alone waits for the clock
-   * (the camera turns locally), so steady mouse movement does not keep the lead a tick longer.
+   * next tick is fixed with them at once, so the frame drawn right after a key has simulated the key's tick: at most
+   * one tick past the furthest the clock has asked for. The clock's target can sit ticks behind the newest fixed tick
+   * (the estimate moves back when the smoothed round trip falls after a retransmitted pong, or the jitter margin
+   * shrinks); measuring from its furthest keeps a stick that changes every frame from running the lead away. A look
+   * change alone waits for the clock (the camera turns locally), so steady mouse movement does not keep the lead a
+   * tick longer.
    */
   private inputStep(atFrame = false): void {
     const sync = this.sync!;
@@ -409,7 +414,8 @@ export class LinkSession {
     const delay = p?.active ? p.inputDelayTicks : 0;
     let target = Math.floor(sync.serverTickAt(now + oneWayMs) + Math.max(0, lead.leadTicks - PUMP_SPACING_TICKS)) + delay;
     const newest = this.sender.newestTick;
-    if (atFrame && newest >= 0 && newest === target && movesDiffer(this.sender.command, this.sender.commandFor(newest))) target = newest + 1;
+    this.highestClockTarget = Math.max(this.highestClockTarget, target);
+    if (atFrame && newest >= 0 && newest >= target && newest <= this.highestClockTarget && movesDiffer(this.sender.command, this.sender.commandFor(newest))) target = newest + 1;
     const msg = target >= 0 ? this.sender.update(target) : null;
     if (msg !== null) {
       const ackTick = this.acks.carry();
