@@ -6,6 +6,7 @@ import { checkGameMessageShape } from '../sim/game-messages.ts';
 import { validateInputFields, type InputCommand } from '../sim/input.ts';
 import type { ClientMessage, HelloMessage, InputMessage } from './client-messages.ts';
 import { decodeFrame, toBytes } from './codec.ts';
+import { readInputFrame } from './input-frame-reader.ts';
 import {
   MAX_CLIENT_FRAME_DEPTH,
   MAX_CLIENT_MESSAGE_BYTES,
@@ -104,7 +105,9 @@ function arity(fields: unknown[], n: number, name: string): Failure | null {
 /** input: [2, firstTick, commands] or [2, firstTick, commands, ackTick] (protocol 7: a snapshot ack riding along). */
 function decodeInput(fields: unknown[]): ClientDecodeResult {
   if (fields.length !== 3 && fields.length !== 4) return bad(`input must have 2 or 3 fields, got ${fields.length - 1}`);
-  const [, firstTick, list, ackTick] = fields;
+  const firstTick = fields[1];
+  const list = fields[2];
+  const ackTick = fields[3];
   if (fields.length === 4 && !isTick(ackTick)) return bad(`input.ackTick must be an integer tick in [0, ${MAX_TICK}], got ${describeValue(ackTick)}`);
   if (!isTick(firstTick)) return bad(`input.firstTick must be an integer tick in [0, ${MAX_TICK}], got ${describeValue(firstTick)}`, ErrorCode.BadInput);
   if (!Array.isArray(list) || list.length === 0 || list.length > MAX_INPUT_COMMANDS_PER_MESSAGE) {
@@ -133,6 +136,9 @@ export function decodeClientMessage(data: unknown, maxBytes: number = MAX_CLIENT
   if (bytes === null) return bad(`expected binary data, got ${describeValue(data)}`, ErrorCode.Malformed);
   if (bytes.length > maxBytes) return bad(`message of ${bytes.length} bytes exceeds the ${maxBytes}-byte limit`, ErrorCode.Oversize);
   if (bytes.length === 0) return bad('empty message', ErrorCode.Malformed);
+  // A playing client's input frame is read without the general decoder (the same fields, checked the same way).
+  const input = readInputFrame(bytes);
+  if (input !== null) return decodeInput(input);
   const frame = decodeFrame(bytes, MAX_CLIENT_FRAME_DEPTH);
   if (!frame.ok) return bad(`not a plain msgpack value: ${frame.error}`, ErrorCode.Malformed);
   const value = frame.value;
