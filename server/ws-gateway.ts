@@ -1,7 +1,8 @@
 // WebSocket side of the shared HTTP(S) port: admits upgrades through the connection policy (per-address caps, back-off
 // after kicks), upgrades with `ws` (maxPayload enforced, no compression), wraps each socket as a ServerConnection
-// whose sends within one turn of the event loop leave in one write (a room's tick: events + snapshot, one syscall per
-// socket), keeps links alive with pings, and makes sure a socket the server closes is gone shortly after.
+// whose sends within one turn of the event loop leave as one buffer in one write (a room's tick: events + snapshot,
+// framed here, one syscall per socket), keeps links alive with pings, and makes sure a socket the server closes is
+// gone shortly after.
 import type { IncomingMessage, Server as HttpServer } from 'node:http';
 import type { Server as HttpsServer } from 'node:https';
 import type { Duplex } from 'node:stream';
@@ -14,6 +15,7 @@ import { ConnectionPolicy, RefusalReason, type ConnectionTicket, type Refusal } 
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
 import { refusalResponse, Tarpit } from './tcp-gate.ts';
+import { frameBinaryMessages, frameHeaderBytes } from './ws-frames.ts';
 
 /** Options of attachWsGateway. */
 export interface WsGatewayOptions {
@@ -62,9 +64,11 @@ function toBytes(data: RawData): Uint8Array {
 class WsConnection implements ServerConnection {
   readonly remote: string;
   private readonly socket: WebSocket;
-  /** The TCP (or TLS) socket under `socket`: corked while this turn's messages gather. */
+  /** The TCP (or TLS) socket under `socket`: this turn's messages are written to it as one buffer of frames. */
   private readonly raw: Duplex;
-  private corked = false;
+  /** Messages sent in this turn of the event loop, and their bytes framed: written by `flush` (a microtask). */
+  private readonly pending: Uint8Array[] = [];
+  private pendingBytes = 0;
   private readonly ticket: ConnectionTicket;
   private readonly clock: Clock;
   private readonly closeGraceMs: number;
@@ -128,27 +132,29 @@ class WsConnection implements ServerConnection {
   }
 
   /**
-   * Queues one message. The first send of a turn corks the socket and a microtask uncorks it, so everything sent to
-   * this client in one synchronous run (a room tick's events and snapshot, a worker batch) goes out in one writev;
-   * nothing waits past the current turn.
+   * Queues one message. The first send of a turn schedules a microtask that frames everything sent to this client in
+   * that synchronous run (a room tick's events and snapshot, a worker batch) into one buffer and writes it: one write
+   * call and one syscall, and nothing waits past the current turn. (`ws`'s own send would make a header buffer and
+   * two corked writes per message, then a writev.)
    */
   send(data: Uint8Array): void {
     if (this.socket.readyState !== this.socket.OPEN) return;
-    if (!this.corked) {
-      this.corked = true;
-      this.raw.cork();
-      queueMicrotask(this.uncork);
-    }
-    this.socket.send(data, { binary: true });
+    if (this.pending.length === 0) queueMicrotask(this.flush);
+    this.pending.push(data);
+    this.pendingBytes += frameHeaderBytes(data.length) + data.length;
   }
 
-  private readonly uncork = (): void => {
-    this.corked = false;
-    this.raw.uncork();
+  private readonly flush = (): void => {
+    if (this.pending.length === 0) return;
+    // Nothing may follow a close frame: once ws has answered the peer's (or the socket is gone), the turn's messages
+    // are dropped, as ws drops what is sent to a socket that is no longer open.
+    if (this.socket.readyState === this.socket.OPEN && !this.raw.destroyed) this.raw.write(frameBinaryMessages(this.pending, this.pendingBytes));
+    this.pending.length = 0;
+    this.pendingBytes = 0;
   };
 
   bufferedAmount(): number {
-    return this.socket.bufferedAmount;
+    return this.socket.bufferedAmount + this.pendingBytes;
   }
 
   isOpen(): boolean {
@@ -157,6 +163,7 @@ class WsConnection implements ServerConnection {
 
   close(code: number, reason: string): void {
     if (this.socket.readyState === this.socket.CLOSED || this.socket.readyState === this.socket.CLOSING) return;
+    this.flush(); // what was sent this turn (a bye) goes before the close frame
     this.socket.close(code, clampCloseReason(reason));
     this.destroyLater();
   }
