@@ -1,12 +1,19 @@
 // Tests of the server's WebSocket framing: the frames are byte for byte what `ws` itself sends for the same binary
 // messages (every length form), and a ws client reads them back as the messages, in order.
-import { Receiver, Sender } from 'ws';
+import { EventEmitter } from 'node:events';
+import * as wsModule from 'ws';
 import { describe, expect, it } from 'vitest';
 import { frameBinaryMessages, frameHeaderBytes } from '../../server/ws-frames.ts';
 
+// ws exports its sender and receiver, but its type package does not declare them.
+const { Receiver, Sender } = wsModule as unknown as {
+  Receiver: new (o: { isServer: boolean }) => EventEmitter & { write(chunk: Buffer): void };
+  Sender: { frame(data: Buffer, o: object): Buffer[] };
+};
+
 /** What ws's own sender writes for one binary message from a server (unmasked, final frame, no compression). */
 function wsFrame(payload: Uint8Array): Buffer {
-  const parts = (Sender as unknown as { frame(data: Buffer, o: object): Buffer[] }).frame(Buffer.from(payload), { fin: true, opcode: 2, mask: false, rsv1: false, readOnly: false });
+  const parts = Sender.frame(Buffer.from(payload), { fin: true, opcode: 2, mask: false, rsv1: false, readOnly: false });
   return Buffer.concat(parts);
 }
 
