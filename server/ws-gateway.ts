@@ -15,7 +15,7 @@ import { ConnectionPolicy, RefusalReason, type ConnectionTicket, type Refusal } 
 import type { Logger } from './logger.ts';
 import type { ServerMetrics } from './metrics.ts';
 import { refusalResponse, Tarpit } from './tcp-gate.ts';
-import { frameBinaryMessages, frameHeaderBytes } from './ws-frames.ts';
+import { frameHeaderBytes, FrameWriter } from './ws-frames.ts';
 
 /** Options of attachWsGateway. */
 export interface WsGatewayOptions {
@@ -80,7 +80,11 @@ class WsConnection implements ServerConnection {
   private killTimer: TimerHandle | null = null;
   alive = true;
 
-  constructor(socket: WebSocket, raw: Duplex, remote: string, ticket: ConnectionTicket, clock: Clock, closeGraceMs: number) {
+  /** The gateway's framing scratch (shared: flushes run one at a time). */
+  private readonly frames: FrameWriter;
+
+  constructor(socket: WebSocket, raw: Duplex, remote: string, ticket: ConnectionTicket, clock: Clock, closeGraceMs: number, frames: FrameWriter) {
+    this.frames = frames;
     this.socket = socket;
     this.raw = raw;
     this.remote = remote;
@@ -148,7 +152,11 @@ class WsConnection implements ServerConnection {
     if (this.pending.length === 0) return;
     // Nothing may follow a close frame: once ws has answered the peer's (or the socket is gone), the turn's messages
     // are dropped, as ws drops what is sent to a socket that is no longer open.
-    if (this.socket.readyState === this.socket.OPEN && !this.raw.destroyed) this.raw.write(frameBinaryMessages(this.pending, this.pendingBytes));
+    if (this.socket.readyState === this.socket.OPEN && !this.raw.destroyed) {
+      this.raw.write(this.frames.frame(this.pending, this.pendingBytes));
+      // Bytes left queued in the stream (the kernel did not take them all at once) still point into the scratch.
+      if (this.raw.writableLength > 0) this.frames.handOff();
+    }
     this.pending.length = 0;
     this.pendingBytes = 0;
   };
@@ -202,6 +210,7 @@ export function attachWsGateway(http: HttpServer | HttpsServer, opts: WsGatewayO
   const policy = opts.policy ?? new ConnectionPolicy(opts.clock);
   const tarpit = opts.tarpit ?? new Tarpit(opts.clock);
   const open = new Set<WsConnection>();
+  const frames = new FrameWriter();
   const heartbeatMs = opts.heartbeatMs ?? 15_000;
   const closeGraceMs = opts.closeGraceMs ?? 1000;
   const trustProxy = opts.trustProxy ?? false;
@@ -238,7 +247,7 @@ export function attachWsGateway(http: HttpServer | HttpsServer, opts: WsGatewayO
     const ticket = policy.open(key);
     socket.once('close', () => ticket.closed());
     wss.handleUpgrade(req, socket, head, (ws) => {
-      const conn = new WsConnection(ws, socket, describeAddress(client), ticket, opts.clock, closeGraceMs);
+      const conn = new WsConnection(ws, socket, describeAddress(client), ticket, opts.clock, closeGraceMs, frames);
       open.add(conn);
       ws.on('close', () => open.delete(conn));
       opts.onConnection(conn, req);

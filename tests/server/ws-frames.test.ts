@@ -1,9 +1,10 @@
 // Tests of the server's WebSocket framing: the frames are byte for byte what `ws` itself sends for the same binary
-// messages (every length form), and a ws client reads them back as the messages, in order.
+// messages (every length form), a ws client reads them back as the messages, in order, and the reused scratch never
+// overwrites frames handed off to a queued write.
 import { EventEmitter } from 'node:events';
 import * as wsModule from 'ws';
 import { describe, expect, it } from 'vitest';
-import { frameBinaryMessages, frameHeaderBytes } from '../../server/ws-frames.ts';
+import { frameBinaryMessages, frameHeaderBytes, FrameWriter } from '../../server/ws-frames.ts';
 
 // ws exports its sender and receiver, but its type package does not declare them.
 const { Receiver, Sender } = wsModule as unknown as {
@@ -38,6 +39,22 @@ describe('ws-frames', () => {
     });
     receiver.write(frameBinaryMessages(messages, total));
     expect(received.map((b) => [...b])).toEqual(messages.map((m) => [...m]));
+  });
+
+  it('frames into its scratch the same bytes, and leaves frames it handed off untouched by later ones', () => {
+    const writer = new FrameWriter();
+    const a = [message(200, 1), message(3, 2)];
+    const b = [message(90, 3)];
+    const bytes = (ms: Uint8Array[]): number => ms.reduce((sum, m) => sum + frameHeaderBytes(m.length) + m.length, 0);
+    const first = writer.frame(a, bytes(a));
+    const copy = Buffer.from(first);
+    expect(first).toEqual(frameBinaryMessages(a, bytes(a)));
+    writer.handOff();
+    expect(writer.frame(b, bytes(b))).toEqual(frameBinaryMessages(b, bytes(b)));
+    expect(first).toEqual(copy);
+    // Larger than the scratch: a buffer of its own.
+    const big = [message(40_000, 4)];
+    expect(writer.frame(big, bytes(big))).toEqual(frameBinaryMessages(big, bytes(big)));
   });
 
   it('refuses a total that does not match the frames', () => {

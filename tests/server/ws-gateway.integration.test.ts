@@ -1,7 +1,7 @@
 // Integration tests for server/ws-gateway.ts on loopback: upgrades on the HTTP port, refusals before the upgrade
 // (full, per-address caps), messages that arrive before the owner attaches, oversize frames reported as 1009, dead
-// peers terminated and counted, a kicked socket cut shortly after its close frame, and the messages of one turn
-// written to the socket at once.
+// peers terminated and counted, a kicked socket cut shortly after its close frame, the messages of one turn
+// written to the socket at once, and every byte intact when writes queue behind a client that stopped reading.
 import { createServer, type IncomingMessage, type Server } from 'node:http';
 import type { AddressInfo } from 'node:net';
 import { afterEach, describe, expect, it } from 'vitest';
@@ -113,6 +113,38 @@ describe('ws-gateway', () => {
     expect(writes).toEqual([1, 1]);
     ws.close();
   });
+
+  it('delivers every byte intact to a client that stops reading while many turns are sent to it and to others', async () => {
+    const conns: ServerConnection[] = [];
+    const url = await listen({ onConnection: (c) => conns.push(c) });
+    const slow = new WebSocket(url);
+    const fast = new WebSocket(url);
+    const got = new Map<WebSocket, Buffer[]>([[slow, []], [fast, []]]);
+    for (const [ws, list] of got) ws.on('message', (d: Buffer) => list.push(d));
+    await Promise.all([slow, fast].map((ws) => new Promise((r) => ws.once('open', r))));
+    await waitFor(() => conns.length === 2);
+    for (const c of conns) c.attach({ message: () => {}, close: () => {} });
+    // The slow client stops reading: once the kernel buffers are full (16 MB sent), writes to it queue in its stream.
+    const slowSocket = (slow as unknown as { _socket: { pause(): void; resume(): void } })._socket;
+    slowSocket.pause();
+    const turns = 2000;
+    const message = (turn: number, size: number): Buffer => Buffer.from(Uint8Array.from({ length: size }, (_, i) => (turn * 7 + i) & 0xff));
+    const sent: Buffer[] = [];
+    for (let t = 0; t < turns; t++) {
+      sent.push(message(t, 8000), message(t + 1, 100));
+      for (const c of conns) {
+        c.send(sent[2 * t]);
+        c.send(sent[2 * t + 1]);
+      }
+      await new Promise((r) => setImmediate(r));
+    }
+    expect(conns.some((c) => c.bufferedAmount() > 0)).toBe(true);
+    slowSocket.resume();
+    await waitFor(() => got.get(slow)!.length === 2 * turns && got.get(fast)!.length === 2 * turns, 20_000);
+    for (const list of got.values()) expect(list.findIndex((m, i) => !m.equals(sent[i]))).toBe(-1);
+    slow.close();
+    fast.close();
+  }, 30_000);
 
   it('refuses the upgrade with 503 and the reason when told to', async () => {
     const url = await listen({ refuse: () => 'server full (1 connections)', onConnection: () => {} });
