@@ -28,6 +28,12 @@ export interface MemberSink {
 /** How a member enters: as a new player, or taking back a player it holds a resume claim for. */
 export type RoomEntry = { name: string } | { resumePlayerId: number };
 
+/** Commands of an input message that came too late for their tick, or too far ahead of the room. */
+export interface OfferTally {
+  inputsLate: number;
+  inputsTooFar: number;
+}
+
 /** A member's place in a room once entered. */
 export interface Seat {
   readonly playerId: number;
@@ -35,6 +41,11 @@ export interface Seat {
   readonly welcome: WelcomeMessage;
   /** Offers a validated command stamped for `tick`; null when the result is not known here (room in a worker). */
   offerInput(tick: number, command: InputCommand): OfferResult | null;
+  /**
+   * Offers a message's validated commands, stamped `firstTick`, `firstTick + 1`, …, and adds the late and too-far ones
+   * to `tally` (where known: a room in a worker tallies nothing here).
+   */
+  offerInputs(firstTick: number, commands: readonly InputCommand[], tally: OfferTally): void;
   /**
    * Queues a game message (its kind already checked against the welcome's schema) for the room's next tick; returns
    * why the room refused it, or null (accepted, or not known here: a room in a worker drops what it refuses).

@@ -28,6 +28,7 @@ export function seatOf(room: Room, playerId: number, member: DeliveringMember): 
     member,
     playerId,
     offerInput: (tick, command) => room.offerInput(playerId, tick, command),
+    offerInputs: (firstTick, commands, tally) => room.offerInputs(playerId, firstTick, commands, tally),
     offerMessage: (name, payload, tick) => room.offerMessage(playerId, name, payload, tick),
     // The member's current encoder: a fall back from predict mode starts a new one.
     acknowledge: (tick) => member.encoder?.acknowledge(tick),

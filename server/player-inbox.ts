@@ -6,7 +6,6 @@ import { ErrorCode, NetMode, type GameMessageMessage, type InputMessage, type Po
 import { checkGameMessage } from '../shared/sim/game-messages.ts';
 import { fitInputMessage } from './game-input-gate.ts';
 import type { Seat } from './hosted-room.ts';
-import { OfferResult } from './input-buffer.ts';
 import type { ServerMetrics } from './metrics.ts';
 import type { LinkStats } from './monitor/link-stats.ts';
 import { RateLimiter } from './rate-limiter.ts';
@@ -65,11 +64,7 @@ export class PlayerInbox {
     if (!fit.ok) return { refuse: ErrorCode.BadInput, message: fit.error };
     if (fit.clamped > 0) ctx.metrics.inputsClamped.inc(fit.clamped);
     if (fit.commands.length > 0) ctx.link.inputArrived(msg.firstTick + fit.commands.length - 1, seat.serverTick());
-    for (let i = 0; i < fit.commands.length; i++) {
-      const r = seat.offerInput(msg.firstTick + i, fit.commands[i]);
-      if (r === OfferResult.Late) ctx.stats.inputsLate++;
-      else if (r === OfferResult.TooFar) ctx.stats.inputsTooFar++;
-    }
+    seat.offerInputs(msg.firstTick, fit.commands, ctx.stats);
     return null;
   }
 

@@ -8,7 +8,7 @@ import { GameMessageQueue } from './game-message-queue.ts';
 import { NetMode } from '../shared/protocol/predict-messages.ts';
 import type { InputCommand } from '../shared/sim/input.ts';
 import { TICK_RATE_HZ } from '../shared/tick-rate.ts';
-import type { HostedRoom, MemberSink, RoomEntry, Seat } from './hosted-room.ts';
+import type { HostedRoom, MemberSink, OfferTally, RoomEntry, Seat } from './hosted-room.ts';
 import { OfferResult } from './input-buffer.ts';
 import type { NetModeRequest } from './net-mode-policy.ts';
 import { PredictFeed } from './predict-feed.ts';
@@ -306,6 +306,24 @@ export class Room implements HostedRoom {
     else if (result === OfferResult.Late) m.inputsLate.inc();
     else if (result === OfferResult.TooFar) m.inputsDropped.inc({ reason: 'too_far' });
     return result;
+  }
+
+  /** offerInput for a message's commands (ticks firstTick, firstTick + 1, …): the player looked up once. */
+  offerInputs(playerId: number, firstTick: number, commands: readonly InputCommand[], tally: OfferTally): void {
+    const p = this.players.get(playerId);
+    if (!p) return;
+    const m = this.opts.metrics;
+    for (let i = 0; i < commands.length; i++) {
+      const result = p.inputs.offer(firstTick + i, commands[i]);
+      if (result === OfferResult.Accepted) m.inputsAccepted.inc();
+      else if (result === OfferResult.Late) {
+        m.inputsLate.inc();
+        tally.inputsLate++;
+      } else if (result === OfferResult.TooFar) {
+        m.inputsDropped.inc({ reason: 'too_far' });
+        tally.inputsTooFar++;
+      }
+    }
   }
 
   /**

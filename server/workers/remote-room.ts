@@ -176,6 +176,9 @@ export class RemoteRoom implements HostedRoom {
         this.via((t) => t.queueInput(member, tick, command));
         return null;
       },
+      offerInputs: (firstTick, commands) => {
+        for (let i = 0; i < commands.length; i++) this.via((t) => t.queueInput(member, firstTick + i, commands[i]));
+      },
       offerMessage: (name, payload, tick) => {
         this.via((t) => t.queueMessage(member, name, payload, tick));
         return null;

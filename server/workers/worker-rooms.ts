@@ -9,7 +9,7 @@ import type { Clock } from '../../shared/clock.ts';
 import { ErrorCode } from '../../shared/protocol/opcodes.ts';
 import { CatchUpBudget } from '../catch-up-budget.ts';
 import { TickPhases, workerPhaseOffsetMs } from '../tick-phases.ts';
-import { DeliveryKind, type MemberSink, type Seat } from '../hosted-room.ts';
+import { DeliveryKind, type MemberSink, type OfferTally, type Seat } from '../hosted-room.ts';
 import { enterRoom, seatOf } from '../local-seat.ts';
 import { DeliveringMember } from '../member-delivery.ts';
 import { SnapshotEncoder } from '../../shared/protocol/index.ts';
@@ -22,6 +22,9 @@ import { RoomError, type Room } from '../room.ts';
 import type { RoomFactory, RoomSimulationBuild } from '../room-manager.ts';
 import { OVERLOADED_NICENESS, setThreadNiceness } from './thread-priority.ts';
 import { ByteBatcher, GC_PAUSE_FIELDS, STATUS_INTERVAL_MS, type CarriedMember, type FromWorker, type MovingRoom, type OpenedRoom, type RoomStatus, type ToWorker, type WorkerRoomConfig } from './worker-protocol.ts';
+
+/** Where the worker's input offers are tallied: nobody reads it (the main thread's sessions count what they can see). */
+const untallied: OfferTally = { inputsLate: 0, inputsTooFar: 0 };
 
 /** Most GC pauses one status carries (a worker collecting more often than this is reported by its tick times). */
 const MAX_GC_PAUSES_PER_STATUS = 256;
@@ -178,7 +181,7 @@ export class WorkerRooms {
         const { inputs, messages, acks, pressure, netModes } = msg.traffic;
         for (const input of inputs) {
           const m = this.members.get(input.member);
-          if (m) for (let i = 0; i < input.commands.length; i++) m.seat.offerInput(input.firstTick + i, input.commands[i]);
+          if (m) m.seat.offerInputs(input.firstTick, input.commands, untallied);
         }
         for (const g of messages) this.members.get(g.member)?.seat.offerMessage(g.name, g.payload, g.tick);
         for (let i = 0; i < acks.length; i += 2) this.members.get(acks[i])?.seat.acknowledge(acks[i + 1]);

@@ -218,11 +218,11 @@ describe('ClientSession', () => {
     const a = await h.join('ann');
     const b = await h.join('bob');
     const room = h.room();
-    const offer = room.offerInput.bind(room);
+    const offer = room.offerInputs.bind(room);
     // A stand-in for a server bug that only this client's messages reach.
-    room.offerInput = (playerId, tick, command) => {
+    room.offerInputs = (playerId, firstTick, commands, tally) => {
       if (playerId === a.playerId) throw new Error('injected fault');
-      return offer(playerId, tick, command);
+      offer(playerId, firstTick, commands, tally);
     };
     const tick = room.sim.tick + 2;
     for (let i = 0; i < 3; i++) a.input(tick + i, [walk(127)]); // only the first is read: the session has ended

@@ -133,6 +133,20 @@ describe('Room', () => {
     expect(room.offerInput(99, 4, cmd(1))).toBeNull();
   });
 
+  it('offers a message\'s commands tick by tick, tallying those too late and too far ahead', () => {
+    const { room, sim, clock } = makeRoom();
+    room.join(new Member(), 'a');
+    clock.advance(3 * TICK_MS);
+    const tally = { inputsLate: 0, inputsTooFar: 0 };
+    const next = sim.records.length; // the first tick not yet run
+    room.offerInputs(1, next - 2, [cmd(1), cmd(2), cmd(3), cmd(4)], tally);
+    room.offerInputs(1, 10_000, [cmd(9)], tally);
+    room.offerInputs(99, 4, [cmd(9)], tally); // a player no longer in the room: nothing
+    expect(tally).toEqual({ inputsLate: 2, inputsTooFar: 1 });
+    clock.advance(2 * TICK_MS);
+    expect(sim.records.slice(next, next + 2).map((r) => r.commands)).toEqual([[{ playerId: 1, input: cmd(3) }], [{ playerId: 1, input: cmd(4) }]]);
+  });
+
   it('records a leave on the next tick, and a join that never reached a record leaves no trace', () => {
     const { room, sim, clock } = makeRoom();
     room.join(new Member(), 'a');
