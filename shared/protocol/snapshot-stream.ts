@@ -3,6 +3,7 @@
 // SnapshotDecoder (client side) keeps the frames it decoded so later deltas find their baselines.
 import type { BodyDescriptor } from '../sim/types.ts';
 import { SNAPSHOT_HISTORY_SIZE } from './limits.ts';
+import { frameIsLive } from './frame-pool.ts';
 import type { SnapshotFormat } from './quantization.ts';
 import { decodeSnapshot, encodeSnapshot, MAX_BASELINE_AGE, readSnapshotHeader } from './snapshot-codec.ts';
 import type { QuantizedFrame } from './snapshot-frame.ts';
@@ -14,23 +15,30 @@ export class TickHistory<T> {
   /** Whether every tick was stored above all before it (then the map's first key is the oldest). */
   private sorted = true;
   private newest = -Infinity;
+  /** Told of every entry the history lets go of (replaced, evicted or cleared). */
+  private readonly onDrop: ((entry: T) => void) | undefined;
 
-  constructor(capacity: number) {
+  constructor(capacity: number, onDrop?: (entry: T) => void) {
     if (!Number.isInteger(capacity) || capacity < 1) throw new Error(`TickHistory: capacity must be a positive integer, got ${capacity}`);
     this.capacity = capacity;
+    this.onDrop = onDrop;
   }
 
   /** Stores an entry (replacing one with the same tick) and evicts the oldest ticks beyond capacity. */
   set(tick: number, entry: T): void {
     // Ticks stored in rising order keep the map's insertion order sorted: its first key is then the oldest.
-    if (!this.entries.has(tick) && tick < this.newest) this.sorted = false;
+    const replaced = this.entries.get(tick);
+    if (replaced === undefined && tick < this.newest) this.sorted = false;
     this.newest = Math.max(this.newest, tick);
     this.entries.set(tick, entry);
+    if (replaced !== undefined && replaced !== entry) this.onDrop?.(replaced);
     while (this.entries.size > this.capacity) {
       let oldest = Infinity;
       if (this.sorted) oldest = this.entries.keys().next().value!;
       else for (const t of this.entries.keys()) if (t < oldest) oldest = t;
+      const dropped = this.entries.get(oldest)!;
       this.entries.delete(oldest);
+      this.onDrop?.(dropped);
     }
   }
 
@@ -46,6 +54,7 @@ export class TickHistory<T> {
 
   /** Forgets everything. */
   clear(): void {
+    if (this.onDrop !== undefined) for (const entry of this.entries.values()) this.onDrop(entry);
     this.entries.clear();
     this.sorted = true;
     this.newest = -Infinity;
@@ -117,7 +126,8 @@ export class SnapshotEncoder {
   private readonly sent: TickHistory<SentSnapshot>;
   private ackedTick = -1;
   private readonly known = new Set<number>();
-  private previousIds: Uint32Array | null = null;
+  /** The frame of the previous encode (retained: its body ids tell which bodies are gone by the next one). */
+  private previous: QuantizedFrame | null = null;
   private readonly counters: SnapshotEncoderStats = { full: 0, delta: 0, bytes: 0, acks: 0, unknownAcks: 0 };
 
   private lastFullTick = -1;
@@ -129,7 +139,8 @@ export class SnapshotEncoder {
    */
   constructor(format: SnapshotFormat, opts: { historySize?: number; fullRetryTicks?: number } = {}) {
     this.format = format;
-    this.sent = new TickHistory(opts.historySize ?? SNAPSHOT_HISTORY_SIZE);
+    // A pooled frame stays retained while it can be a baseline (frame-pool.ts).
+    this.sent = new TickHistory<SentSnapshot>(opts.historySize ?? SNAPSHOT_HISTORY_SIZE, (entry) => entry.frame.lease?.release());
     this.fullRetryTicks = opts.fullRetryTicks ?? 30;
     if (!Number.isInteger(this.fullRetryTicks) || this.fullRetryTicks < 0) throw new Error(`SnapshotEncoder: fullRetryTicks must be an integer ≥ 0, got ${opts.fullRetryTicks}`);
   }
@@ -187,7 +198,8 @@ export class SnapshotEncoder {
    */
   encode(frame: QuantizedFrame, describe: (bodyId: number) => BodyDescriptor | undefined, shared?: SharedFrameWork): EncodedSnapshot {
     const baseEntry = this.ackedTick >= 0 ? this.sent.get(this.ackedTick) : undefined;
-    const usable = baseEntry !== undefined && baseEntry.frame.tick < frame.tick && frame.tick - baseEntry.frame.tick <= MAX_BASELINE_AGE;
+    // A pooled baseline is retained while in the history; frameIsLive guards against a holder that let go too early.
+    const usable = baseEntry !== undefined && baseEntry.frame.tick < frame.tick && frame.tick - baseEntry.frame.tick <= MAX_BASELINE_AGE && frameIsLive(baseEntry.frame);
     const baseline = usable ? baseEntry.frame : null;
     // The bytes depend only on (format, frame, baseline): clients of one room that acked the same tick share them.
     const key = baseline === null ? -1 : baseline.tick;
@@ -197,15 +209,23 @@ export class SnapshotEncoder {
       shared?.bytes.set(key, bytes);
     }
     // Bodies gone since the previous encode are forgotten, so a reused id gets its new descriptor.
-    if (this.previousIds !== null && this.previousIds !== frame.bodyIds && this.known.size > 0) {
-      let gone = shared?.removed.get(this.previousIds);
-      if (gone === undefined) {
-        gone = removedIds(this.previousIds, frame.bodyIds);
-        shared?.removed.set(this.previousIds, gone);
+    const previous = this.previous;
+    if (previous !== null && previous !== frame && this.known.size > 0) {
+      if (!frameIsLive(previous)) this.known.clear(); // which bodies left is lost: resend descriptors rather than miss one
+      else {
+        let gone = shared?.removed.get(previous.bodyIds);
+        if (gone === undefined) {
+          gone = removedIds(previous.bodyIds, frame.bodyIds);
+          shared?.removed.set(previous.bodyIds, gone);
+        }
+        for (const id of gone) this.known.delete(id);
       }
-      for (const id of gone) this.known.delete(id);
     }
-    this.previousIds = frame.bodyIds;
+    if (previous !== frame) {
+      frame.lease?.retain();
+      previous?.lease?.release();
+      this.previous = frame;
+    }
     // Candidates for descriptors: bodies of the frame missing from the baseline (all of them for a full snapshot).
     let fresh = shared?.fresh.get(key);
     if (fresh === undefined) {
@@ -222,6 +242,7 @@ export class SnapshotEncoder {
       descriptors.push(d);
       descriptorIds.push(id);
     }
+    frame.lease?.retain();
     this.sent.set(frame.tick, { frame, descriptorIds });
     if (baseline === null) {
       this.counters.full++;
