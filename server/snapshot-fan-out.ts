@@ -87,6 +87,11 @@ export class SnapshotFanOut {
     return this.formatCache;
   }
 
+  /** Quantized-frame buffers handed out so far, and how many of them were reused (for tests and figures). */
+  get framePoolCounts(): Readonly<{ taken: number; reused: number }> {
+    return this.pool.counts;
+  }
+
   /**
    * Body arrays of an earlier frame that nothing reads any more (its quantized form replaced it), handed out once:
    * captureFrame copies the next frame into them instead of allocating. Null when there are none.

@@ -92,6 +92,38 @@ describe('SnapshotFanOut', () => {
     expect(reused).toBeGreaterThanOrEqual(10);
   });
 
+  it('reuses frame buffers while members on slow, stalled and reset streams still decode every snapshot exactly', () => {
+    // A buffer handed out again while a member's history still held its frame would turn that member's deltas into
+    // deltas against another tick's numbers (a wrong decode), or into full snapshots where deltas were due.
+    const world = new SyntheticWorld({ seed: 11, bodies: 60, spawnChance: 0.2, removeChance: 0.1 });
+    const fan = new SnapshotFanOut({ bounds: SYNTH_BOUNDS, isSceneStatic: () => true, describe: (id) => world.describe(id) });
+    const historySize = 6;
+    const ackDelays = [1, 5, 40, 2]; // the third stalls long past its history; the fourth is reset now and then
+    const members = ackDelays.map((delay) => ({ delay, encoder: new SnapshotEncoder(fan.format, { historySize }), decoder: new SnapshotDecoder(fan.format), sent: [] as number[], deltas: 0 }));
+    for (let t = 0; t < 160; t++) {
+      world.step();
+      const r = world.read();
+      const bodies = { count: r.count, ids: Uint32Array.from(r.ids), states: Float32Array.from(r.states), flags: Uint8Array.from(r.flags) };
+      const expected = quantizeFrame(fan.format, world.tick, bodies, world.characterStates());
+      const f: WorldFrame = { tick: world.tick, bodies, characters: world.characterStates() };
+      for (const [i, m] of members.entries()) {
+        if (i === 3 && t % 25 === 24) m.encoder.reset();
+        const due = m.sent.filter((tick) => tick <= world.tick - m.delay);
+        for (const tick of due) m.encoder.acknowledge(tick);
+        m.sent = m.sent.filter((tick) => tick > world.tick - m.delay);
+        const sent = fan.snapshotFor(m.encoder, f);
+        if (sent.encoded.baselineTick !== null) m.deltas++;
+        expect(framesEqual(m.decoder.decode(snapshotBytes(sent.message)).frame, expected), `member ${i}, tick ${world.tick}`).toBe(true);
+        m.sent.push(world.tick);
+      }
+    }
+    // Buffers came back and were reused, and members whose acks land inside their history got deltas throughout.
+    expect(fan.framePoolCounts.reused).toBeGreaterThan(100);
+    expect(members[0].deltas).toBeGreaterThanOrEqual(158);
+    expect(members[1].deltas).toBeGreaterThanOrEqual(150);
+    expect(members[2].deltas).toBe(0); // acks 40 ticks late: its baselines are long evicted
+  });
+
   it('frames the events of a tick once for every member', () => {
     const { fan } = setup();
     const events: SimEvent[] = [{ type: 'playerJoined', tick: 3, playerId: 1, name: 'ann' }];
