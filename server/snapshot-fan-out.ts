@@ -119,8 +119,9 @@ export class SnapshotFanOut {
     // reliable, so what a member got last is what it holds).
     const stateVersion = work.stateVersion;
     const withState = stateVersion !== null && stateVersion !== heldStateVersion;
-    // Most members share a baseline and lack no descriptor: a number keys their message, no string is built.
-    const plainKey = encoded.descriptors.length === 0 ? (encoded.baselineTick ?? -1) * 2 + (withState ? 1 : 0) : null;
+    // Most members share a baseline and lack either no descriptor or every new body's (the room in step): a number
+    // keys their message, no string is built.
+    const plainKey = encoded.allFresh || encoded.descriptors.length === 0 ? (encoded.baselineTick ?? -1) * 4 + (encoded.descriptors.length > 0 ? 2 : 0) + (withState ? 1 : 0) : null;
     let key = '';
     if (plainKey === null) {
       key = `${encoded.baselineTick ?? -1}${withState ? 's' : ''}`;

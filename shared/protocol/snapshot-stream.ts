@@ -78,13 +78,31 @@ function addedIds(before: Uint32Array, after: Uint32Array): number[] {
   return removedIds(after, before);
 }
 
+const NO_DESCRIPTORS = Object.freeze([]) as unknown as BodyDescriptor[];
+const NO_IDS: ArrayLike<number> = Object.freeze([]);
+
+/** A spawned body's descriptor; a body without one is a server bug, not a client's doing. */
+function describeOne(id: number, describe: (bodyId: number) => BodyDescriptor | undefined): BodyDescriptor {
+  const d = describe(id);
+  if (d === undefined) throw new Error(`SnapshotEncoder: no descriptor for spawned body ${id}`);
+  return d;
+}
+
+function describeAll(ids: ArrayLike<number>, describe: (bodyId: number) => BodyDescriptor | undefined): BodyDescriptor[] {
+  const out: BodyDescriptor[] = [];
+  for (let i = 0; i < ids.length; i++) out.push(describeOne(ids[i], describe));
+  return out;
+}
+
 /**
- * Work on one frame shared by the encoders of a room (same frame object, same format): encoded bytes and the ids new
- * since a baseline, both by baseline tick (-1: full snapshot), and the ids removed since a previous frame's id list.
+ * Work on one frame shared by the encoders of a room (same frame object, same format): encoded bytes, the ids new
+ * since a baseline and the descriptors of all of them (for clients that hold none yet), each by baseline tick (-1:
+ * full snapshot), and the ids removed since a previous frame's id list.
  */
 export class SharedFrameWork {
   readonly bytes = new Map<number, Uint8Array>();
   readonly fresh = new Map<number, ArrayLike<number>>();
+  readonly freshDescriptors = new Map<number, BodyDescriptor[]>();
   readonly removed = new Map<Uint32Array, number[]>();
 }
 
@@ -95,8 +113,16 @@ export interface EncodedSnapshot {
   bytes: Uint8Array;
   /** The acked frame this is a delta against; null for a full snapshot. */
   baselineTick: number | null;
-  /** Descriptors of bodies in this snapshot the client is not known to have (spawns since its baseline). */
+  /**
+   * Descriptors of bodies in this snapshot the client is not known to have (spawns since its baseline). Read only:
+   * clients of a room on the same baseline may get the same (frozen when empty) array.
+   */
   descriptors: BodyDescriptor[];
+  /**
+   * Whether `descriptors` are those of every body new since the baseline (the client held none of them): then they
+   * are the same for every client of the room on that baseline, and so is the message that carries them.
+   */
+  allFresh: boolean;
 }
 
 /** What an ack did. */
@@ -104,7 +130,7 @@ export type AckOutcome = 'baseline' | 'older' | 'unknown';
 
 interface SentSnapshot {
   frame: QuantizedFrame;
-  descriptorIds: number[];
+  descriptorIds: ArrayLike<number>;
 }
 
 /** Encoder statistics (for metrics). */
@@ -172,7 +198,8 @@ export class SnapshotEncoder {
       return 'unknown';
     }
     this.counters.acks++;
-    for (const id of entry.descriptorIds) this.known.add(id);
+    const ids = entry.descriptorIds;
+    for (let i = 0; i < ids.length; i++) this.known.add(ids[i]);
     if (tick > this.ackedTick) {
       this.ackedTick = tick;
       return 'baseline';
@@ -232,15 +259,27 @@ export class SnapshotEncoder {
       fresh = baseline === null ? frame.bodyIds : addedIds(baseline.bodyIds, frame.bodyIds);
       shared?.fresh.set(key, fresh);
     }
-    const descriptors: BodyDescriptor[] = [];
-    const descriptorIds: number[] = [];
-    for (let i = 0; i < fresh.length; i++) {
-      const id = fresh[i];
-      if (this.known.has(id)) continue;
-      const d = describe(id);
-      if (d === undefined) throw new Error(`SnapshotEncoder: no descriptor for spawned body ${id}`);
-      descriptors.push(d);
-      descriptorIds.push(id);
+    let unknown = 0;
+    for (let i = 0; i < fresh.length; i++) if (!this.known.has(fresh[i])) unknown++;
+    let descriptors = NO_DESCRIPTORS;
+    let descriptorIds: ArrayLike<number> = NO_IDS;
+    const allFresh = unknown === fresh.length;
+    if (allFresh && unknown > 0) {
+      // The common case of a room in step: every client on this baseline lacks the same bodies; described once.
+      descriptors = shared?.freshDescriptors.get(key) ?? describeAll(fresh, describe);
+      shared?.freshDescriptors.set(key, descriptors);
+      descriptorIds = fresh;
+    } else if (unknown > 0) {
+      const own: BodyDescriptor[] = [];
+      const ownIds: number[] = [];
+      for (let i = 0; i < fresh.length; i++) {
+        const id = fresh[i];
+        if (this.known.has(id)) continue;
+        own.push(describeOne(id, describe));
+        ownIds.push(id);
+      }
+      descriptors = own;
+      descriptorIds = ownIds;
     }
     frame.lease?.retain();
     this.sent.set(frame.tick, { frame, descriptorIds });
@@ -250,7 +289,7 @@ export class SnapshotEncoder {
     }
     else this.counters.delta++;
     this.counters.bytes += bytes.length;
-    return { tick: frame.tick, bytes, baselineTick: baseline === null ? null : baseline.tick, descriptors };
+    return { tick: frame.tick, bytes, baselineTick: baseline === null ? null : baseline.tick, descriptors, allFresh };
   }
 
   /** Forgets every sent frame and ack (the next snapshot is full); known descriptors stay known. */

@@ -92,6 +92,42 @@ describe('SnapshotFanOut', () => {
     expect(reused).toBeGreaterThanOrEqual(10);
   });
 
+  it('describes new bodies once for members that lack all of them, who get the very same message', () => {
+    const world = new SyntheticWorld({ seed: 9, bodies: 30, spawnChance: 1, removeChance: 0 });
+    const fan = new SnapshotFanOut({ bounds: SYNTH_BOUNDS, isSceneStatic: () => true, describe: (id) => world.describe(id) });
+    const frameNow = (): WorldFrame => {
+      const r = world.read();
+      return { tick: world.tick, bodies: { count: r.count, ids: Uint32Array.from(r.ids), states: Float32Array.from(r.states), flags: Uint8Array.from(r.flags) }, characters: world.characterStates() };
+    };
+    const first = frameNow();
+    const members = ['a', 'b', 'c'].map(() => {
+      const encoder = new SnapshotEncoder(fan.format);
+      encoder.markDescriptorsKnown(first.bodies.ids);
+      const decoder = new SnapshotDecoder(fan.format);
+      decoder.decode(snapshotBytes(fan.snapshotFor(encoder, first).message));
+      encoder.acknowledge(first.tick);
+      return { encoder, decoder };
+    });
+    world.step();
+    world.step(); // two bodies spawned since the members' baseline
+    const f = frameNow();
+    const spawned = [...f.bodies.ids].filter((id) => !first.bodies.ids.includes(id) && id !== 0x7000_0000);
+    expect(spawned).toHaveLength(2);
+    members[2].encoder.markDescriptorsKnown([spawned[0]]); // c already holds one of them
+    const [a, b, c] = members.map((m) => fan.snapshotFor(m.encoder, f));
+    expect(b.message).toBe(a.message);
+    expect(b.encoded.descriptors).toBe(a.encoded.descriptors);
+    expect(c.message).not.toBe(a.message);
+    const expected = quantizeFrame(fan.format, f.tick, f.bodies, f.characters);
+    const got = [a, b, c].map((s, i) => {
+      const r = decodeServerMessage(s.message);
+      if (!r.ok || r.message.type !== 'snapshot') throw new Error('not a snapshot');
+      expect(framesEqual(members[i].decoder.decode(r.message.bytes).frame, expected)).toBe(true);
+      return r.message.descriptors.map((d) => d.id);
+    });
+    expect(got).toEqual([spawned, spawned, [spawned[1]]]);
+  });
+
   it('reuses frame buffers while members on slow, stalled and reset streams still decode every snapshot exactly', () => {
     // A buffer handed out again while a member's history still held its frame would turn that member's deltas into
     // deltas against another tick's numbers (a wrong decode), or into full snapshots where deltas were due.
