@@ -2,7 +2,7 @@
 // codes (2 usage, 1 failure). Returns the exit code; never calls process.exit, so tests can call it in-process.
 import { parseArgs, didYouMean, wantsHelp } from './args.ts';
 import { ExitCode, UsageError, type CliIo } from './command.ts';
-import { COMMANDS, findCommand } from './commands.ts';
+import { findCommand, loadCommands } from './commands.ts';
 import { commandHelp, PROGRAM, programHelp } from './usage.ts';
 
 /** Output to the process's own streams. */
@@ -18,16 +18,16 @@ export function processIo(): CliIo {
 export async function main(argv: readonly string[], io: CliIo = processIo()): Promise<number> {
   const [name, ...rest] = argv;
   if (name === undefined) {
-    io.stderr(programHelp(COMMANDS));
+    io.stderr(programHelp(await loadCommands()));
     return ExitCode.Usage;
   }
   if (name === '--help' || name === '-h' || name === 'help') {
     const topic = name === 'help' ? rest[0] : undefined;
     if (topic === undefined) {
-      io.stdout(programHelp(COMMANDS));
+      io.stdout(programHelp(await loadCommands()));
       return ExitCode.Ok;
     }
-    const spec = findCommand(topic);
+    const spec = await findCommand(topic);
     if (!spec) return unknownCommand(topic, io);
     io.stdout(commandHelp(spec));
     return ExitCode.Ok;
@@ -36,7 +36,7 @@ export async function main(argv: readonly string[], io: CliIo = processIo()): Pr
     io.stdout(`${PROGRAM} ${await packageVersion()}\n`);
     return ExitCode.Ok;
   }
-  const spec = findCommand(name);
+  const spec = await findCommand(name);
   if (!spec) return unknownCommand(name, io);
   if (wantsHelp(rest)) {
     io.stdout(commandHelp(spec));
@@ -57,9 +57,10 @@ export async function main(argv: readonly string[], io: CliIo = processIo()): Pr
   }
 }
 
-function unknownCommand(name: string, io: CliIo): number {
-  const names = COMMANDS.filter((c) => !c.hidden).map((c) => c.name);
-  io.stderr(`${PROGRAM}: unknown command '${name}'${didYouMean(name, names)}\n\n${programHelp(COMMANDS)}`);
+async function unknownCommand(name: string, io: CliIo): Promise<number> {
+  const commands = await loadCommands();
+  const names = commands.filter((c) => !c.hidden).map((c) => c.name);
+  io.stderr(`${PROGRAM}: unknown command '${name}'${didYouMean(name, names)}\n\n${programHelp(commands)}`);
   return ExitCode.Usage;
 }
 

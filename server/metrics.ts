@@ -2,6 +2,7 @@
 // as in tests, never share counters), the metric objects rooms and sessions update, and the text for GET /metrics.
 import { AggregatorRegistry, Gauge, Histogram, Registry, collectDefaultMetrics, type Counter, type MetricObjectWithValues, type MetricValue } from 'prom-client';
 import { talliedCounter } from './tallied-counter.ts';
+import { talliedHistogram } from './tallied-histogram.ts';
 
 const TICK_BUCKETS_SECONDS = [0.0005, 0.001, 0.002, 0.004, 0.008, 0.0125, 0.01667, 0.025, 0.05, 0.1, 0.25];
 const SNAPSHOT_BYTE_BUCKETS = [64, 256, 1024, 4096, 16384, 65536, 262144];
@@ -85,6 +86,7 @@ export function createMetrics(opts: { processMetrics?: boolean; prefix?: string 
   // Counters are summed in place and handed to prom-client when it collects (talliedCounter): several are counted per
   // message or per member and tick.
   const counter = (name: string, help: string, labelNames: string[] = []): Counter<string> => talliedCounter({ name: p + name, help, labelNames, registers });
+  // Histograms observed once or more per tick store plain values until prom-client collects (talliedHistogram).
   const gauge = (name: string, help: string): Gauge<string> => new Gauge({ name: p + name, help, registers });
   let heapSource: () => Iterable<RoomHeapUsage> = () => [];
   const wasmHeap = new Gauge({
@@ -122,8 +124,8 @@ export function createMetrics(opts: { processMetrics?: boolean; prefix?: string 
     setRoomPaceSource: (source) => {
       paceSource = source;
     },
-    tickDuration: new Histogram({ name: `${p}tick_duration_seconds`, help: 'Wall time of one room tick (inputs, physics, snapshots, sends)', buckets: TICK_BUCKETS_SECONDS, registers }),
-    physicsStep: new Histogram({ name: `${p}physics_step_seconds`, help: 'Wall time of Simulation.step in one room tick', buckets: TICK_BUCKETS_SECONDS, registers }),
+    tickDuration: talliedHistogram({ name: `${p}tick_duration_seconds`, help: 'Wall time of one room tick (inputs, physics, snapshots, sends)', buckets: TICK_BUCKETS_SECONDS, registers }),
+    physicsStep: talliedHistogram({ name: `${p}physics_step_seconds`, help: 'Wall time of Simulation.step in one room tick', buckets: TICK_BUCKETS_SECONDS, registers }),
     ticks: counter('ticks_total', 'Room ticks simulated'),
     tickOverruns: counter('tick_overruns_total', 'Room ticks that took longer than the tick period'),
     ticksSkipped: counter('ticks_skipped_total', 'Ticks given up (slowdown) because a room could not catch up'),
@@ -135,7 +137,7 @@ export function createMetrics(opts: { processMetrics?: boolean; prefix?: string 
     inputsRepeated: counter('inputs_repeated_total', "Player ticks that repeated the last input because none had arrived"),
     inputsAccepted: counter('inputs_accepted_total', 'Inputs stored for a future tick'),
     inputsClamped: counter('inputs_clamped_total', 'Input commands clamped into range by validation'),
-    snapshotBytes: new Histogram({ name: `${p}snapshot_bytes`, help: 'Encoded size of one snapshot message', buckets: SNAPSHOT_BYTE_BUCKETS, registers }),
+    snapshotBytes: talliedHistogram({ name: `${p}snapshot_bytes`, help: 'Encoded size of one snapshot message', buckets: SNAPSHOT_BYTE_BUCKETS, registers }),
     snapshotsSent: counter('snapshots_sent_total', 'Snapshots sent', ['kind']),
     snapshotsSkipped: counter('snapshots_skipped_total', "Snapshots skipped because the client's socket buffer was backed up"),
     bytesSent: counter('bytes_sent_total', 'Bytes sent to clients (all messages)'),

@@ -412,7 +412,8 @@ export class Room implements HostedRoom {
   /** Does the tick's bookkeeping now and returns what sends its events and frame (possibly later, see release). */
   private deliver(tick: number, events: readonly SimEvent[], recordMessage: Uint8Array | null): () => void {
     // A removed scene static stays one until this tick is sent: a held frame taken before it still shows the body.
-    const removed = events.flatMap((e) => (e.type === 'bodyRemoved' ? [e.bodyId] : []));
+    const removed: number[] = [];
+    for (const e of events) if (e.type === 'bodyRemoved') removed.push(e.bodyId);
     let frame: WorldFrame | null = null;
     this.snapshotAccumulator += this.opts.snapshotRateHz;
     if (this.snapshotAccumulator + 1e-9 >= TICK_RATE_HZ) {

@@ -175,7 +175,7 @@ export async function startServer(opts: StartServerOptions = {}): Promise<Runnin
   if (opts.tls) checkTls(opts.tls);
   const policy = new ConnectionPolicy(clock, { maxSockets: opts.maxConnections ?? 256, ...opts.connectionPolicy });
   const tarpit = new Tarpit(clock, opts.tarpit);
-  const fleet = createFleetDirectory(opts.fleet, clock, logger);
+  const fleet = await createFleetDirectory(opts.fleet, clock, logger);
 
   setHeapGrowingPercent(opts.heapGrowingPercent ?? DEFAULT_HEAP_GROWING_PERCENT);
   const roomWorkers = opts.roomWorkers ?? 0;

@@ -55,20 +55,50 @@ const server = await startServer({
   roomWorkerYoungGenerationMb: process.env.BENCH_WORKER_YOUNG_MB ? Number(process.env.BENCH_WORKER_YOUNG_MB) : undefined,
 });
 
+/**
+ * A growing column of numbers outside the JS heap. Plain arrays of doubles, regrown as they filled, were survivors of
+ * every scavenge of the server they measure (each regrowth a fresh young copy of the whole column, one per field per room).
+ */
+class Column {
+  private data = new Float64Array(4096);
+  private n = 0;
+
+  push(value: number): void {
+    if (this.n === this.data.length) {
+      const grown = new Float64Array(this.data.length * 2);
+      grown.set(this.data);
+      this.data = grown;
+    }
+    this.data[this.n++] = value;
+  }
+
+  get length(): number {
+    return this.n;
+  }
+
+  clear(): void {
+    this.n = 0;
+  }
+
+  values(): number[] {
+    return Array.from(this.data.subarray(0, this.n));
+  }
+}
+
 interface TickLog {
   room: Room;
-  startsMs: number[];
+  startsMs: Column;
   /** How late each tick started after it was due (ms), and this thread's CPU time (ms) when it started. */
-  lateMs: number[];
-  cpuAtStartMs: number[];
-  wallMs: number[];
-  cpuMs: number[];
+  lateMs: Column;
+  cpuAtStartMs: Column;
+  wallMs: Column;
+  cpuMs: Column;
 }
 const logs: TickLog[] = [];
 
 /** Times every tick of a room: its start, its wall time and this thread's CPU time inside it. */
 function instrument(room: Room): void {
-  const log: TickLog = { room, startsMs: [], lateMs: [], cpuAtStartMs: [], wallMs: [], cpuMs: [] };
+  const log: TickLog = { room, startsMs: new Column(), lateMs: new Column(), cpuAtStartMs: new Column(), wallMs: new Column(), cpuMs: new Column() };
   logs.push(log);
   const tickOnce = room.tickOnce.bind(room);
   room.tickOnce = () => {
@@ -202,7 +232,7 @@ async function report(): Promise<unknown> {
   }
   if (process.env.BENCH_DUMP) {
     const { writeFileSync } = await import('node:fs');
-    writeFileSync(process.env.BENCH_DUMP, JSON.stringify({ fromMs: mark.atMs, toMs: endMs, cpuMs: (cpu.user + cpu.system) / 1000, gc: pauses.map((p, i) => [p.startTime, p.duration, kinds[i]]), rooms: logs.map((l) => ({ id: l.room.id, starts: l.startsMs, late: l.lateMs, cpuAt: l.cpuAtStartMs, wall: l.wallMs, cpu: l.cpuMs })) }));
+    writeFileSync(process.env.BENCH_DUMP, JSON.stringify({ fromMs: mark.atMs, toMs: endMs, cpuMs: (cpu.user + cpu.system) / 1000, gc: pauses.map((p, i) => [p.startTime, p.duration, kinds[i]]), rooms: logs.map((l) => ({ id: l.room.id, starts: l.startsMs.values(), late: l.lateMs.values(), cpuAt: l.cpuAtStartMs.values(), wall: l.wallMs.values(), cpu: l.cpuMs.values() })) }));
   }
   return {
     seconds,
@@ -221,16 +251,20 @@ async function report(): Promise<unknown> {
     roomWorkers,
     rooms: roomWorkers > 0 ? inWorkers : logs
       .filter((l) => l.startsMs.length > 0 || l.room.clientCount > 0)
-      .map((l) => ({
-        id: l.room.id,
-        clients: l.room.clientCount,
-        bodies: l.room.info().bodies,
-        ticks: l.startsMs.length,
-        cpuMsTotal: round(l.cpuMs.reduce((s, v) => s + v, 0), 3),
-        tickWallMs: summary(l.wallMs),
-        tickCpuMs: summary(l.cpuMs),
-        maxGapMs: maxGap(l.startsMs) === null ? null : round(maxGap(l.startsMs)!, 3),
-      })),
+      .map((l) => {
+        const starts = l.startsMs.values();
+        const gap = maxGap(starts);
+        return {
+          id: l.room.id,
+          clients: l.room.clientCount,
+          bodies: l.room.info().bodies,
+          ticks: starts.length,
+          cpuMsTotal: round(l.cpuMs.values().reduce((s, v) => s + v, 0), 3),
+          tickWallMs: summary(l.wallMs.values()),
+          tickCpuMs: summary(l.cpuMs.values()),
+          maxGapMs: gap === null ? null : round(gap, 3),
+        };
+      }),
   };
 }
 
@@ -242,13 +276,7 @@ lines.on('line', (line) => {
       const [cmd, arg] = line.trim().split(/\s+/);
       if (cmd === 'rooms') say({ rooms: await openRooms(Number(arg)) });
       else if (cmd === 'mark') {
-        for (const l of logs) {
-          l.startsMs = [];
-          l.lateMs = [];
-          l.cpuAtStartMs = [];
-          l.wallMs = [];
-          l.cpuMs = [];
-        }
+        for (const l of logs) for (const column of [l.startsMs, l.lateMs, l.cpuAtStartMs, l.wallMs, l.cpuMs]) column.clear();
         pauses.length = 0;
         kinds.length = 0;
         ticksAtMark = new Map(server.game.rooms.list().map((r) => [r.id, r.tick]));

@@ -3,7 +3,7 @@
 // other members. Redis being down or slow never blocks the tick loop or throws out of a timer: every call is bounded
 // by a command timeout, failures are logged (once per outage) and retried on the next heartbeat, local rooms go on.
 import { randomBytes } from 'node:crypto';
-import { Redis } from 'ioredis';
+import type { Redis } from 'ioredis';
 import type { Clock, TimerHandle } from '../../shared/clock.ts';
 import { ErrorCode } from '../../shared/protocol/opcodes.ts';
 import type { Logger } from '../logger.ts';
@@ -38,6 +38,8 @@ export interface FleetDirectoryOptions {
   logger: Logger;
   /** Longest wait for one Redis command (ms). Default 2000. */
   commandTimeoutMs?: number;
+  /** ioredis's client class (loaded by the caller only when a fleet is asked for: it costs start-up time). */
+  redisClass: typeof Redis;
 }
 
 /** Defaults of the fleet flags. */
@@ -89,7 +91,7 @@ export class FleetDirectory implements RoomDirectory {
   constructor(opts: FleetDirectoryOptions) {
     this.opts = opts;
     const timeoutMs = opts.commandTimeoutMs ?? 2000;
-    this.redis = new Redis(opts.redisUrl, {
+    this.redis = new opts.redisClass(opts.redisUrl, {
       lazyConnect: true,
       // Commands fail at once while disconnected (nothing queues up behind an outage) and never wait past the timeout.
       enableOfflineQueue: false,

@@ -31,10 +31,14 @@ export interface AgonesServerOptions {
   client?: AgonesClient;
 }
 
-/** The directory for `--redis` (not connected yet: rooms need it before the server listens), or null. */
-export function createFleetDirectory(opts: FleetOptions | undefined, clock: Clock, logger: Logger): FleetDirectory | null {
+/**
+ * The directory for `--redis` (not connected yet: rooms need it before the server listens), or null. The Redis client
+ * library is loaded here, so a server outside a fleet never loads it.
+ */
+export async function createFleetDirectory(opts: FleetOptions | undefined, clock: Clock, logger: Logger): Promise<FleetDirectory | null> {
   if (!opts) return null;
-  return new FleetDirectory({ redisUrl: opts.redisUrl, ttlMs: (opts.ttlSeconds ?? FLEET_DEFAULTS.ttlSeconds) * 1000, prefix: opts.prefix ?? FLEET_DEFAULTS.prefix, clock, logger });
+  const { Redis } = await import('ioredis');
+  return new FleetDirectory({ redisUrl: opts.redisUrl, ttlMs: (opts.ttlSeconds ?? FLEET_DEFAULTS.ttlSeconds) * 1000, prefix: opts.prefix ?? FLEET_DEFAULTS.prefix, clock, logger, redisClass: Redis });
 }
 
 /** What joinFleet needs from the listening server. */

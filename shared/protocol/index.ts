@@ -2,6 +2,7 @@
 export { BitReader, BitWriter, bestExpGolombOrder, bitsFor, expGolombBits, unzigzag, zigzag } from './bit-stream.ts';
 export type { ClientByeMessage, ClientMessage, GameMessageMessage, HelloMessage, InputMessage, PingMessage, SnapshotAckMessage } from './client-messages.ts';
 export { decodeFrame, encodeClientMessage, encodeServerMessage, FrameError, MAX_SERVER_FRAME_DEPTH, packValue, toBytes, unpackFrame, type FrameDecode } from './codec.ts';
+export { FrameLease, frameIsLive, QuantizedFramePool, type PooledArrays } from './frame-pool.ts';
 export { packDescriptors, parseShape, unpackDescriptors, type PackedDescriptors } from './descriptor-codec.ts';
 export * from './limits.ts';
 export { ByeReason, ClientOpcode, ErrorCode, PROTOCOL_VERSION, RECONNECTABLE_BYE_REASONS, ServerOpcode } from './opcodes.ts';

@@ -2,6 +2,7 @@
 // read and shared by every client's encoder; and its float view (SnapshotView) for interpolation and rendering.
 import { BODY_STATE_STRIDE, BodyFlag } from '../physics-data/body-state.ts';
 import type { CharacterState } from '../sim/types.ts';
+import type { FrameLease, QuantizedFramePool } from './frame-pool.ts';
 import {
   GROUND_STATES,
   dequantizeAxis,
@@ -38,6 +39,8 @@ export interface QuantizedFrame {
   readonly playerIds: Uint32Array;
   /** CHARACTER_Q_STRIDE integers per character, in playerIds order. */
   readonly characters: Int32Array;
+  /** Set when the arrays come from a QuantizedFramePool: whoever keeps the frame retains it (frame-pool.ts). */
+  readonly lease?: FrameLease;
 }
 
 /** The simulation's bulk read (`readBodyStates()`): ids ascending, 13 floats per body, BodyFlag bits. */
@@ -72,6 +75,8 @@ export interface QuantizeFrameOptions {
    * reuse its integers instead of quantizing again (bodies at rest cost a comparison). Same result either way.
    */
   previous?: { read: BodyStatesRead; frame: QuantizedFrame };
+  /** Where the frame's arrays come from (reused buffers; the frame then carries a lease its holders retain). */
+  pool?: QuantizedFramePool;
 }
 
 /**
@@ -92,8 +97,10 @@ export function quantizeFrame(format: SnapshotFormat, tick: number, read: BodySt
   const minZ = format.bounds.min.z;
   const [stepX, stepY, stepZ] = format.positionStepMetres;
   const [stepsX, stepsY, stepsZ] = format.positionSteps;
-  const bodyIds = new Uint32Array(kept);
-  const bodies = new Int32Array(kept * BODY_Q_STRIDE);
+  const sorted = characters.length > 1 ? [...characters].sort((a, b) => a.playerId - b.playerId) : characters;
+  const pooled = opts.pool?.take(kept, sorted.length);
+  const bodyIds = pooled?.bodyIds ?? new Uint32Array(kept);
+  const bodies = pooled?.bodies ?? new Int32Array(kept * BODY_Q_STRIDE);
   const prevRead = opts.previous?.read;
   const prevFrame = opts.previous?.frame;
   let pi = 0;
@@ -134,9 +141,8 @@ export function quantizeFrame(format: SnapshotFormat, tick: number, read: BodySt
     bodies[o + 7] = (flags & BodyFlag.Active) === 0 ? 1 : 0;
     j++;
   }
-  const sorted = [...characters].sort((a, b) => a.playerId - b.playerId);
-  const playerIds = new Uint32Array(sorted.length);
-  const chars = new Int32Array(sorted.length * CHARACTER_Q_STRIDE);
+  const playerIds = pooled?.playerIds ?? new Uint32Array(sorted.length);
+  const chars = pooled?.characters ?? new Int32Array(sorted.length * CHARACTER_Q_STRIDE);
   for (let i = 0; i < sorted.length; i++) {
     const c = sorted[i];
     if (!Number.isInteger(c.playerId) || c.playerId < 0 || c.playerId > 0x7fff_ffff) throw new Error(`quantizeFrame: bad player id ${c.playerId}`);
@@ -156,7 +162,7 @@ export function quantizeFrame(format: SnapshotFormat, tick: number, read: BodySt
     chars[o + 9] = groundStateCode(c.groundState);
     chars[o + 10] = (c.buttons >>> 0) & 0xff;
   }
-  return { tick, bodyIds, bodies, playerIds, characters: chars };
+  return pooled === undefined ? { tick, bodyIds, bodies, playerIds, characters: chars } : { tick, bodyIds, bodies, playerIds, characters: chars, lease: pooled.lease };
 }
 
 /** quantizeAxis with the axis constants hoisted (the per-body hot path). */

@@ -3,6 +3,7 @@
 // SnapshotDecoder (client side) keeps the frames it decoded so later deltas find their baselines.
 import type { BodyDescriptor } from '../sim/types.ts';
 import { SNAPSHOT_HISTORY_SIZE } from './limits.ts';
+import { frameIsLive } from './frame-pool.ts';
 import type { SnapshotFormat } from './quantization.ts';
 import { decodeSnapshot, encodeSnapshot, MAX_BASELINE_AGE, readSnapshotHeader } from './snapshot-codec.ts';
 import type { QuantizedFrame } from './snapshot-frame.ts';
@@ -14,23 +15,30 @@ export class TickHistory<T> {
   /** Whether every tick was stored above all before it (then the map's first key is the oldest). */
   private sorted = true;
   private newest = -Infinity;
+  /** Told of every entry the history lets go of (replaced, evicted or cleared). */
+  private readonly onDrop: ((entry: T) => void) | undefined;
 
-  constructor(capacity: number) {
+  constructor(capacity: number, onDrop?: (entry: T) => void) {
     if (!Number.isInteger(capacity) || capacity < 1) throw new Error(`TickHistory: capacity must be a positive integer, got ${capacity}`);
     this.capacity = capacity;
+    this.onDrop = onDrop;
   }
 
   /** Stores an entry (replacing one with the same tick) and evicts the oldest ticks beyond capacity. */
   set(tick: number, entry: T): void {
     // Ticks stored in rising order keep the map's insertion order sorted: its first key is then the oldest.
-    if (!this.entries.has(tick) && tick < this.newest) this.sorted = false;
+    const replaced = this.entries.get(tick);
+    if (replaced === undefined && tick < this.newest) this.sorted = false;
     this.newest = Math.max(this.newest, tick);
     this.entries.set(tick, entry);
+    if (replaced !== undefined && replaced !== entry) this.onDrop?.(replaced);
     while (this.entries.size > this.capacity) {
       let oldest = Infinity;
       if (this.sorted) oldest = this.entries.keys().next().value!;
       else for (const t of this.entries.keys()) if (t < oldest) oldest = t;
+      const dropped = this.entries.get(oldest)!;
       this.entries.delete(oldest);
+      this.onDrop?.(dropped);
     }
   }
 
@@ -46,6 +54,7 @@ export class TickHistory<T> {
 
   /** Forgets everything. */
   clear(): void {
+    if (this.onDrop !== undefined) for (const entry of this.entries.values()) this.onDrop(entry);
     this.entries.clear();
     this.sorted = true;
     this.newest = -Infinity;
@@ -69,13 +78,31 @@ function addedIds(before: Uint32Array, after: Uint32Array): number[] {
   return removedIds(after, before);
 }
 
+const NO_DESCRIPTORS = Object.freeze([]) as unknown as BodyDescriptor[];
+const NO_IDS: ArrayLike<number> = Object.freeze([]);
+
+/** A spawned body's descriptor; a body without one is a server bug, not a client's doing. */
+function describeOne(id: number, describe: (bodyId: number) => BodyDescriptor | undefined): BodyDescriptor {
+  const d = describe(id);
+  if (d === undefined) throw new Error(`SnapshotEncoder: no descriptor for spawned body ${id}`);
+  return d;
+}
+
+function describeAll(ids: ArrayLike<number>, describe: (bodyId: number) => BodyDescriptor | undefined): BodyDescriptor[] {
+  const out: BodyDescriptor[] = [];
+  for (let i = 0; i < ids.length; i++) out.push(describeOne(ids[i], describe));
+  return out;
+}
+
 /**
- * Work on one frame shared by the encoders of a room (same frame object, same format): encoded bytes and the ids new
- * since a baseline, both by baseline tick (-1: full snapshot), and the ids removed since a previous frame's id list.
+ * Work on one frame shared by the encoders of a room (same frame object, same format): encoded bytes, the ids new
+ * since a baseline and the descriptors of all of them (for clients that hold none yet), each by baseline tick (-1:
+ * full snapshot), and the ids removed since a previous frame's id list.
  */
 export class SharedFrameWork {
   readonly bytes = new Map<number, Uint8Array>();
   readonly fresh = new Map<number, ArrayLike<number>>();
+  readonly freshDescriptors = new Map<number, BodyDescriptor[]>();
   readonly removed = new Map<Uint32Array, number[]>();
 }
 
@@ -86,8 +113,16 @@ export interface EncodedSnapshot {
   bytes: Uint8Array;
   /** The acked frame this is a delta against; null for a full snapshot. */
   baselineTick: number | null;
-  /** Descriptors of bodies in this snapshot the client is not known to have (spawns since its baseline). */
+  /**
+   * Descriptors of bodies in this snapshot the client is not known to have (spawns since its baseline). Read only:
+   * clients of a room on the same baseline may get the same (frozen when empty) array.
+   */
   descriptors: BodyDescriptor[];
+  /**
+   * Whether `descriptors` are those of every body new since the baseline (the client held none of them): then they
+   * are the same for every client of the room on that baseline, and so is the message that carries them.
+   */
+  allFresh: boolean;
 }
 
 /** What an ack did. */
@@ -95,7 +130,7 @@ export type AckOutcome = 'baseline' | 'older' | 'unknown';
 
 interface SentSnapshot {
   frame: QuantizedFrame;
-  descriptorIds: number[];
+  descriptorIds: ArrayLike<number>;
 }
 
 /** Encoder statistics (for metrics). */
@@ -117,7 +152,8 @@ export class SnapshotEncoder {
   private readonly sent: TickHistory<SentSnapshot>;
   private ackedTick = -1;
   private readonly known = new Set<number>();
-  private previousIds: Uint32Array | null = null;
+  /** The frame of the previous encode (retained: its body ids tell which bodies are gone by the next one). */
+  private previous: QuantizedFrame | null = null;
   private readonly counters: SnapshotEncoderStats = { full: 0, delta: 0, bytes: 0, acks: 0, unknownAcks: 0 };
 
   private lastFullTick = -1;
@@ -129,7 +165,8 @@ export class SnapshotEncoder {
    */
   constructor(format: SnapshotFormat, opts: { historySize?: number; fullRetryTicks?: number } = {}) {
     this.format = format;
-    this.sent = new TickHistory(opts.historySize ?? SNAPSHOT_HISTORY_SIZE);
+    // A pooled frame stays retained while it can be a baseline (frame-pool.ts).
+    this.sent = new TickHistory<SentSnapshot>(opts.historySize ?? SNAPSHOT_HISTORY_SIZE, (entry) => entry.frame.lease?.release());
     this.fullRetryTicks = opts.fullRetryTicks ?? 30;
     if (!Number.isInteger(this.fullRetryTicks) || this.fullRetryTicks < 0) throw new Error(`SnapshotEncoder: fullRetryTicks must be an integer ≥ 0, got ${opts.fullRetryTicks}`);
   }
@@ -161,7 +198,8 @@ export class SnapshotEncoder {
       return 'unknown';
     }
     this.counters.acks++;
-    for (const id of entry.descriptorIds) this.known.add(id);
+    const ids = entry.descriptorIds;
+    for (let i = 0; i < ids.length; i++) this.known.add(ids[i]);
     if (tick > this.ackedTick) {
       this.ackedTick = tick;
       return 'baseline';
@@ -187,7 +225,8 @@ export class SnapshotEncoder {
    */
   encode(frame: QuantizedFrame, describe: (bodyId: number) => BodyDescriptor | undefined, shared?: SharedFrameWork): EncodedSnapshot {
     const baseEntry = this.ackedTick >= 0 ? this.sent.get(this.ackedTick) : undefined;
-    const usable = baseEntry !== undefined && baseEntry.frame.tick < frame.tick && frame.tick - baseEntry.frame.tick <= MAX_BASELINE_AGE;
+    // A pooled baseline is retained while in the history; frameIsLive guards against a holder that let go too early.
+    const usable = baseEntry !== undefined && baseEntry.frame.tick < frame.tick && frame.tick - baseEntry.frame.tick <= MAX_BASELINE_AGE && frameIsLive(baseEntry.frame);
     const baseline = usable ? baseEntry.frame : null;
     // The bytes depend only on (format, frame, baseline): clients of one room that acked the same tick share them.
     const key = baseline === null ? -1 : baseline.tick;
@@ -197,31 +236,52 @@ export class SnapshotEncoder {
       shared?.bytes.set(key, bytes);
     }
     // Bodies gone since the previous encode are forgotten, so a reused id gets its new descriptor.
-    if (this.previousIds !== null && this.previousIds !== frame.bodyIds && this.known.size > 0) {
-      let gone = shared?.removed.get(this.previousIds);
-      if (gone === undefined) {
-        gone = removedIds(this.previousIds, frame.bodyIds);
-        shared?.removed.set(this.previousIds, gone);
+    const previous = this.previous;
+    if (previous !== null && previous !== frame && this.known.size > 0) {
+      if (!frameIsLive(previous)) this.known.clear(); // which bodies left is lost: resend descriptors rather than miss one
+      else {
+        let gone = shared?.removed.get(previous.bodyIds);
+        if (gone === undefined) {
+          gone = removedIds(previous.bodyIds, frame.bodyIds);
+          shared?.removed.set(previous.bodyIds, gone);
+        }
+        for (const id of gone) this.known.delete(id);
       }
-      for (const id of gone) this.known.delete(id);
     }
-    this.previousIds = frame.bodyIds;
+    if (previous !== frame) {
+      frame.lease?.retain();
+      previous?.lease?.release();
+      this.previous = frame;
+    }
     // Candidates for descriptors: bodies of the frame missing from the baseline (all of them for a full snapshot).
     let fresh = shared?.fresh.get(key);
     if (fresh === undefined) {
       fresh = baseline === null ? frame.bodyIds : addedIds(baseline.bodyIds, frame.bodyIds);
       shared?.fresh.set(key, fresh);
     }
-    const descriptors: BodyDescriptor[] = [];
-    const descriptorIds: number[] = [];
-    for (let i = 0; i < fresh.length; i++) {
-      const id = fresh[i];
-      if (this.known.has(id)) continue;
-      const d = describe(id);
-      if (d === undefined) throw new Error(`SnapshotEncoder: no descriptor for spawned body ${id}`);
-      descriptors.push(d);
-      descriptorIds.push(id);
+    let unknown = 0;
+    for (let i = 0; i < fresh.length; i++) if (!this.known.has(fresh[i])) unknown++;
+    let descriptors = NO_DESCRIPTORS;
+    let descriptorIds: ArrayLike<number> = NO_IDS;
+    const allFresh = unknown === fresh.length;
+    if (allFresh && unknown > 0) {
+      // The common case of a room in step: every client on this baseline lacks the same bodies; described once.
+      descriptors = shared?.freshDescriptors.get(key) ?? describeAll(fresh, describe);
+      shared?.freshDescriptors.set(key, descriptors);
+      descriptorIds = fresh;
+    } else if (unknown > 0) {
+      const own: BodyDescriptor[] = [];
+      const ownIds: number[] = [];
+      for (let i = 0; i < fresh.length; i++) {
+        const id = fresh[i];
+        if (this.known.has(id)) continue;
+        own.push(describeOne(id, describe));
+        ownIds.push(id);
+      }
+      descriptors = own;
+      descriptorIds = ownIds;
     }
+    frame.lease?.retain();
     this.sent.set(frame.tick, { frame, descriptorIds });
     if (baseline === null) {
       this.counters.full++;
@@ -229,7 +289,7 @@ export class SnapshotEncoder {
     }
     else this.counters.delta++;
     this.counters.bytes += bytes.length;
-    return { tick: frame.tick, bytes, baselineTick: baseline === null ? null : baseline.tick, descriptors };
+    return { tick: frame.tick, bytes, baselineTick: baseline === null ? null : baseline.tick, descriptors, allFresh };
   }
 
   /** Forgets every sent frame and ack (the next snapshot is full); known descriptors stay known. */

@@ -104,10 +104,13 @@ export function runTick(core: SimCore, raw: unknown): SimEvent[] {
     if (rec.messages && core.instance.onMessage) {
       for (const m of rec.messages) hook(core, 'onMessage', () => core.instance.onMessage!(core.ctx, gameMessageEvent(m, core.gameMessageKinds)));
     }
-    const given = new Map(rec.commands.map((c) => [c.playerId, c.input]));
+    // Commands and players both ascend by player id (the record is validated so): one walk pairs them.
+    const given = rec.commands;
+    let g = 0;
     const applied: PlayerCommand[] = [];
     for (const p of core.players.inOrder()) {
-      const cmd = given.get(p.playerId) ?? p.input;
+      while (g < given.length && given[g].playerId < p.playerId) g++;
+      const cmd = g < given.length && given[g].playerId === p.playerId ? given[g].input : p.input;
       applied.push({ playerId: p.playerId, input: cmd });
       const aim = applyCommand(p, cmd, core.rules, tick);
       if (aim) fire(core, p, aim, tick);

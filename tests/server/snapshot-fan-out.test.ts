@@ -92,6 +92,74 @@ describe('SnapshotFanOut', () => {
     expect(reused).toBeGreaterThanOrEqual(10);
   });
 
+  it('describes new bodies once for members that lack all of them, who get the very same message', () => {
+    const world = new SyntheticWorld({ seed: 9, bodies: 30, spawnChance: 1, removeChance: 0 });
+    const fan = new SnapshotFanOut({ bounds: SYNTH_BOUNDS, isSceneStatic: () => true, describe: (id) => world.describe(id) });
+    const frameNow = (): WorldFrame => {
+      const r = world.read();
+      return { tick: world.tick, bodies: { count: r.count, ids: Uint32Array.from(r.ids), states: Float32Array.from(r.states), flags: Uint8Array.from(r.flags) }, characters: world.characterStates() };
+    };
+    const first = frameNow();
+    const members = ['a', 'b', 'c'].map(() => {
+      const encoder = new SnapshotEncoder(fan.format);
+      encoder.markDescriptorsKnown(first.bodies.ids);
+      const decoder = new SnapshotDecoder(fan.format);
+      decoder.decode(snapshotBytes(fan.snapshotFor(encoder, first).message));
+      encoder.acknowledge(first.tick);
+      return { encoder, decoder };
+    });
+    world.step();
+    world.step(); // two bodies spawned since the members' baseline
+    const f = frameNow();
+    const spawned = [...f.bodies.ids].filter((id) => !first.bodies.ids.includes(id) && id !== 0x7000_0000);
+    expect(spawned).toHaveLength(2);
+    members[2].encoder.markDescriptorsKnown([spawned[0]]); // c already holds one of them
+    const [a, b, c] = members.map((m) => fan.snapshotFor(m.encoder, f));
+    expect(b.message).toBe(a.message);
+    expect(b.encoded.descriptors).toBe(a.encoded.descriptors);
+    expect(c.message).not.toBe(a.message);
+    const expected = quantizeFrame(fan.format, f.tick, f.bodies, f.characters);
+    const got = [a, b, c].map((s, i) => {
+      const r = decodeServerMessage(s.message);
+      if (!r.ok || r.message.type !== 'snapshot') throw new Error('not a snapshot');
+      expect(framesEqual(members[i].decoder.decode(r.message.bytes).frame, expected)).toBe(true);
+      return r.message.descriptors.map((d) => d.id);
+    });
+    expect(got).toEqual([spawned, spawned, [spawned[1]]]);
+  });
+
+  it('reuses frame buffers while members on slow, stalled and reset streams still decode every snapshot exactly', () => {
+    // A buffer handed out again while a member's history still held its frame would turn that member's deltas into
+    // deltas against another tick's numbers (a wrong decode), or into full snapshots where deltas were due.
+    const world = new SyntheticWorld({ seed: 11, bodies: 60, spawnChance: 0.2, removeChance: 0.1 });
+    const fan = new SnapshotFanOut({ bounds: SYNTH_BOUNDS, isSceneStatic: () => true, describe: (id) => world.describe(id) });
+    const historySize = 6;
+    const ackDelays = [1, 5, 40, 2]; // the third stalls long past its history; the fourth is reset now and then
+    const members = ackDelays.map((delay) => ({ delay, encoder: new SnapshotEncoder(fan.format, { historySize }), decoder: new SnapshotDecoder(fan.format), sent: [] as number[], deltas: 0 }));
+    for (let t = 0; t < 160; t++) {
+      world.step();
+      const r = world.read();
+      const bodies = { count: r.count, ids: Uint32Array.from(r.ids), states: Float32Array.from(r.states), flags: Uint8Array.from(r.flags) };
+      const expected = quantizeFrame(fan.format, world.tick, bodies, world.characterStates());
+      const f: WorldFrame = { tick: world.tick, bodies, characters: world.characterStates() };
+      for (const [i, m] of members.entries()) {
+        if (i === 3 && t % 25 === 24) m.encoder.reset();
+        const due = m.sent.filter((tick) => tick <= world.tick - m.delay);
+        for (const tick of due) m.encoder.acknowledge(tick);
+        m.sent = m.sent.filter((tick) => tick > world.tick - m.delay);
+        const sent = fan.snapshotFor(m.encoder, f);
+        if (sent.encoded.baselineTick !== null) m.deltas++;
+        expect(framesEqual(m.decoder.decode(snapshotBytes(sent.message)).frame, expected), `member ${i}, tick ${world.tick}`).toBe(true);
+        m.sent.push(world.tick);
+      }
+    }
+    // Buffers came back and were reused, and members whose acks land inside their history got deltas throughout.
+    expect(fan.framePoolCounts.reused).toBeGreaterThan(100);
+    expect(members[0].deltas).toBeGreaterThanOrEqual(158);
+    expect(members[1].deltas).toBeGreaterThanOrEqual(150);
+    expect(members[2].deltas).toBe(0); // acks 40 ticks late: its baselines are long evicted
+  });
+
   it('frames the events of a tick once for every member', () => {
     const { fan } = setup();
     const events: SimEvent[] = [{ type: 'playerJoined', tick: 3, playerId: 1, name: 'ann' }];
