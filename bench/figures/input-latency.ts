@@ -58,6 +58,15 @@ async function run(opts: { quick: boolean; log(m: string): void }): Promise<Figu
       } else if (result === OfferResult.Accepted) a.stored = true;
       return result;
     };
+    // A message's commands arrive through offerInputs (one player lookup per message): each goes through the timed
+    // offerInput above, and the session's tally counts as the room's own offerInputs would.
+    room.offerInputs = (playerId, firstTick, commands, tally) => {
+      for (let i = 0; i < commands.length; i++) {
+        const result = room.offerInput(playerId, firstTick + i, commands[i]);
+        if (result === OfferResult.Late) tally.inputsLate++;
+        else if (result === OfferResult.TooFar) tally.inputsTooFar++;
+      }
+    };
     const waitTicks: number[] = [];
     const waitMs: number[] = [];
     room.onTick((record) => {
