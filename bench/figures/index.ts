@@ -27,7 +27,7 @@ export const FIGURES: readonly FigureSpec[] = Object.freeze([
     title: 'clients per core',
     detailKey: 'clientsPerCoreDetail',
     headlineKeys: ['clientsPerCoreStock', 'clientsPerCoreCrowd', 'usPerClientTick', 'gcPauseP99Ms'],
-    timeLimitMs: (quick: boolean) => (quick ? min(3) : min(8)),
+    timeLimitMs: (quick: boolean) => (quick ? min(3) : min(12)),
     module: 'figures/clients-per-core.ts',
   },
   {
